@@ -1,0 +1,52 @@
+// curvenet/io.hpp — reading networks, writing networks and meshes.
+//
+// Formats
+//  * native network (.json): documented in docs/network-format.md; read and
+//    written exactly (doubles round-trip bit for bit).
+//  * .lop loop files: one face, a loop of B-spline curves (first line the
+//    number of curves; per curve: degree; knot count and knots; control-point
+//    count and x y z triples).
+//  * meshes: Wavefront OBJ and binary little-endian PLY, both with normals.
+//
+// Errors: every reader throws InputError naming the file, the element or line,
+// and what is wrong. Writers never leave a partial file behind: they write to
+// a temporary file beside the target and rename it into place when complete.
+#pragma once
+
+#include <functional>
+#include <iosfwd>
+#include <string>
+
+#include "curvenet/mesh.hpp"
+#include "curvenet/network.hpp"
+
+namespace curvenet {
+inline namespace v1 {
+
+/// Parses a native network document; `file` is only used in error messages.
+NetworkDescription parseNetworkJson(const std::string &text, const std::string &file = {});
+/// The native document for a description (pretty-printed JSON).
+std::string networkToJson(const NetworkDescription &description);
+
+/// Parses a .lop loop file into a one-face description.
+NetworkDescription parseLop(const std::string &text, const std::string &file = {});
+
+/// Reads a network file, choosing the format by extension (.json, .lop).
+NetworkDescription readNetworkFile(const std::string &path);
+
+/// Resolves a command-line INPUT: "builtin:NAME" or a file path.
+NetworkDescription loadNetworkInput(const std::string &input);
+
+/// Writes the file at `path` through `writer`, atomically: the content goes
+/// to a temporary file in the same folder which is renamed onto `path` only
+/// after `writer` returned and the stream flushed without error. On any
+/// exception the temporary is removed and the exception propagates.
+void writeFileAtomically(const std::string &path, const std::function<void(std::ostream &)> &writer);
+
+void writeObj(const Mesh &mesh, std::ostream &out);
+void writePly(const Mesh &mesh, std::ostream &out);
+/// Writes OBJ or PLY by the extension of `path` (atomically).
+void writeMeshFile(const Mesh &mesh, const std::string &path);
+
+} // namespace v1
+} // namespace curvenet

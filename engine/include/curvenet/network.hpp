@@ -1,0 +1,134 @@
+// curvenet/network.hpp — the curve network: vertices, segments and faces.
+//
+// Input arrives as a NetworkDescription (from a file, a built-in, or code):
+// curves, and faces given as closed loops of curve ranges. Network::build
+// turns it into topology:
+//
+//  * every curve is split at each parameter where some face starts or ends a
+//    side on it, so a curve passing through a vertex becomes two segments;
+//  * segment end points closer than the tolerance are merged into vertices;
+//  * each face is an oriented loop of sides; a side is one curve range and
+//    may span several segments — this is how a T-node looks from the face
+//    that sees a straight angle there: the two segments form one side;
+//  * adjacency: each segment knows its one (boundary) or two faces.
+//
+// Segments and face sides are reparameterized to [0, 1]. A segment runs from
+// its `start` vertex to its `end` vertex in the direction of its source curve.
+// Networks are immutable after build; const access is thread-safe.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "curvenet/curve.hpp"
+#include "curvenet/reference.hpp"
+
+namespace curvenet {
+inline namespace v1 {
+
+/// One side of a face loop as written in the input: curve `curve` from
+/// parameter `from` to parameter `to` (from > to runs the curve backwards).
+struct SideDescription {
+  int curve = -1;
+  double from = 0, to = 0;
+};
+
+struct FaceDescription {
+  std::vector<SideDescription> sides; ///< in loop order; side k ends where side k+1 starts
+  std::string name;                   ///< optional, for reports
+};
+
+struct NetworkDescription {
+  std::string name;
+  std::vector<BSplineCurve> curves;
+  std::vector<FaceDescription> faces;
+  /// Relative tolerance: points closer than tolerance × bounding-box diagonal
+  /// are the same vertex, and loops must close within it.
+  double tolerance = 1e-7;
+  std::optional<ReferenceSurface> reference;
+};
+
+/// Vertex kinds by paper 000 Fig. 1 (n = independent curves).
+enum class VertexKind {
+  Corner,  ///< valence 2, two independent curves (a loop corner, e.g. on the boundary)
+  Smooth,  ///< valence 2, one curve passing through (no corner in any face)
+  T,       ///< valence 3, one curve passing through, one ending
+  Y,       ///< valence 3, three independent curves
+  X,       ///< valence 4, two curves passing through
+  General, ///< any other configuration (valence ≥ 4 with ≥ 3 independent curves, …)
+};
+const char *toString(VertexKind kind);
+
+struct Vertex {
+  Vec3 position;
+  std::vector<int> segments; ///< incident segments (a closed segment appears twice)
+  int valence = 0;           ///< number of segment ends at the vertex
+  int independentCurves = 0; ///< valence minus the pairs of segments that continue each other
+  VertexKind kind = VertexKind::General;
+  bool onBoundary = false;   ///< touches a segment with only one face
+};
+
+struct Segment {
+  BSplineCurve curve; ///< on [0, 1], from start vertex to end vertex
+  int start = -1, end = -1;
+  int sourceCurve = -1;            ///< index into the description's curves
+  double sourceFrom = 0, sourceTo = 0; ///< range of the source curve (sourceFrom < sourceTo)
+  std::array<int, 2> faces{-1, -1};    ///< faces[1] == -1 on the boundary
+  bool isBoundary() const { return faces[1] < 0; }
+};
+
+struct FaceSide {
+  BSplineCurve curve;        ///< on [0, 1], in the loop direction
+  int startVertex = -1, endVertex = -1;
+  std::vector<int> segments; ///< in loop order
+  std::vector<bool> segmentReversed; ///< true where the loop runs a segment from end to start
+  /// Side parameters where one segment ends and the next begins (T-nodes
+  /// seen from the straight side); empty for a one-segment side.
+  std::vector<double> breaks;
+  int sourceCurve = -1;
+  double sourceFrom = 0, sourceTo = 0; ///< as written: from > to when traversed backwards
+};
+
+struct Face {
+  std::string name;
+  std::vector<FaceSide> sides;
+  int sideCount() const { return static_cast<int>(sides.size()); }
+};
+
+class Network {
+public:
+  /// Builds the topology; throws InputError naming `file` (may be empty) and
+  /// the element at fault: unknown curve index, range outside the curve,
+  /// loop that does not close, fewer than 2 or more than 8 sides, a segment
+  /// used by more than two faces or twice in the same direction.
+  static Network build(const NetworkDescription &description, const std::string &file = {});
+
+  const std::string &name() const { return name_; }
+  const std::vector<Vertex> &vertices() const { return vertices_; }
+  const std::vector<Segment> &segments() const { return segments_; }
+  const std::vector<Face> &faces() const { return faces_; }
+  const std::optional<ReferenceSurface> &reference() const { return reference_; }
+  const NetworkDescription &description() const { return description_; }
+  /// Bounding box of the curves' control polygons (contains the curves).
+  const BoundingBox &bounds() const { return bounds_; }
+  double diagonal() const { return bounds_.diagonal(); }
+
+  /// Outgoing unit tangent of segment `segment` at vertex `vertex` (pointing
+  /// away from the vertex along the segment).
+  Vec3 outgoingTangent(int segment, int vertex) const;
+
+private:
+  std::string name_;
+  std::vector<Vertex> vertices_;
+  std::vector<Segment> segments_;
+  std::vector<Face> faces_;
+  std::optional<ReferenceSurface> reference_;
+  NetworkDescription description_;
+  BoundingBox bounds_;
+};
+
+} // namespace v1
+} // namespace curvenet

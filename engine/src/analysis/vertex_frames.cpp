@@ -1,0 +1,59 @@
+#include "analysis/vertex_frames.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <numbers>
+
+namespace curvenet {
+inline namespace v1 {
+
+std::vector<VertexFrame> computeVertexFrames(const Network &network) {
+  const auto &vertices = network.vertices();
+  std::vector<VertexFrame> frames(vertices.size());
+
+  // Orientation hint per vertex: the sum of the corner normals of the faces.
+  std::vector<Vec3> cornerSum(vertices.size());
+  for (const Face &face : network.faces()) {
+    const int n = face.sideCount();
+    for (int k = 0; k < n; ++k) {
+      const FaceSide &in = face.sides[(k + n - 1) % n], &out = face.sides[k];
+      const Vec3 forward = normalized(out.curve.derivatives(0.0)[1]);
+      const Vec3 back = normalized(-in.curve.derivatives(1.0)[1]);
+      cornerSum[out.startVertex] += cross(forward, back);
+    }
+  }
+
+  for (size_t v = 0; v < vertices.size(); ++v) {
+    std::vector<Vec3> tangents;
+    for (size_t k = 0; k < vertices[v].segments.size(); ++k) {
+      const int s = vertices[v].segments[k];
+      const Segment &seg = network.segments()[s];
+      // A closed segment appears twice: once for each end.
+      const bool startEnd = seg.start == static_cast<int>(v) &&
+                            (seg.end != seg.start || std::count(vertices[v].segments.begin(),
+                                                                vertices[v].segments.begin() + k, s) == 0);
+      const Vec3 d = seg.curve.derivatives(startEnd ? 0.0 : 1.0)[1];
+      tangents.push_back(normalized(startEnd ? d : -d));
+    }
+    Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+    for (const Vec3 &t : tangents) {
+      const Eigen::Vector3d e(t.x, t.y, t.z);
+      scatter += e * e.transpose();
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
+    const Eigen::Vector3d smallest = solver.eigenvectors().col(0);
+    Vec3 normal{smallest.x(), smallest.y(), smallest.z()};
+    const Vec3 hint = cornerSum[v];
+    // Tangents along one line leave the plane free: take the corners' plane.
+    const double spread = solver.eigenvalues()(1) / std::max(solver.eigenvalues()(2), 1e-300);
+    if (spread < 1e-10 && squaredNorm(hint) > 0) normal = normalized(hint);
+    if (dot(normal, hint) < 0) normal = -normal;
+    double residual = 0;
+    for (const Vec3 &t : tangents) residual = std::max(residual, std::asin(std::min(1.0, std::abs(dot(t, normal)))));
+    frames[v] = {normalized(normal), residual};
+  }
+  return frames;
+}
+
+} // namespace v1
+} // namespace curvenet

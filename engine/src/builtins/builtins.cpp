@@ -1,0 +1,68 @@
+// The registry of built-in networks (curvenet/builtins.hpp).
+#include "curvenet/builtins.hpp"
+
+#include <functional>
+
+#include "builtins/builtin_support.hpp"
+#include "curvenet/error.hpp"
+
+namespace curvenet {
+inline namespace v1 {
+
+namespace {
+
+using builtin_detail::BuiltinData;
+
+struct Entry {
+  BuiltinInfo info;
+  std::function<BuiltinData()> make;
+};
+
+const std::vector<Entry> &entries() {
+  using namespace builtin_detail;
+  static const std::vector<Entry> list = {
+      {{"pentagon", "one 5-sided loop of planar sections around the top of the ellipsoid (1.2, 1.0, 0.8)"},
+       [] { return ellipsoidNetworkFromSphere("pentagon", pentagonCapOnSphere(), {1.2, 1.0, 0.8}); }},
+      {{"sphere-dodecahedron", "12 pentagons on the unit sphere, dodecahedron edges as great-circle arcs"},
+       [] { return ellipsoidNetworkFromSphere("sphere-dodecahedron", dodecahedronOnSphere(), {1, 1, 1}); }},
+      {{"ellipsoid-truncated-icosahedron",
+        "12 pentagons + 20 hexagons, truncated icosahedron on the ellipsoid (1.3, 1.0, 0.75), planar-section edges"},
+       [] {
+         return ellipsoidNetworkFromSphere("ellipsoid-truncated-icosahedron", truncatedIcosahedronOnSphere(),
+                                           {1.3, 1.0, 0.75});
+       }},
+      {{"torus-mixed", "closed torus (R 1, r 0.45): 3-, 4-, 5-, 6-sided faces, valence 3/4/5, inner hyperbolic band"},
+       [] { return torusMixed(); }},
+      {{"saddle-nodes", "open network on z = x^2 - y^2 with an X-node, a T-node and a 2-sided lens"},
+       [] { return saddleNodes(); }},
+  };
+  return list;
+}
+
+BuiltinData generate(const std::string &name) {
+  for (const Entry &e : entries())
+    if (e.info.name == name) return e.make();
+  std::string known;
+  for (const Entry &e : entries()) known += (known.empty() ? "" : ", ") + e.info.name;
+  throw InputError("", "builtin:" + name, "unknown built-in network; known: " + known);
+}
+
+} // namespace
+
+const std::vector<BuiltinInfo> &builtinNetworks() {
+  static const std::vector<BuiltinInfo> infos = [] {
+    std::vector<BuiltinInfo> v;
+    for (const Entry &e : entries()) v.push_back(e.info);
+    return v;
+  }();
+  return infos;
+}
+
+std::string defaultBuiltinName() { return "ellipsoid-truncated-icosahedron"; }
+
+NetworkDescription builtinNetwork(const std::string &name) { return generate(name).network; }
+
+std::vector<BuiltinVertexFact> builtinVertexFacts(const std::string &name) { return generate(name).facts; }
+
+} // namespace v1
+} // namespace curvenet

@@ -1,0 +1,175 @@
+// File-level I/O: choosing a reader by extension, atomic writes, mesh writers.
+#include <atomic>
+#include <bit>
+#include <cctype>
+#include <cerrno>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+
+#include <unistd.h>
+
+#include "curvenet/builtins.hpp"
+#include "curvenet/error.hpp"
+#include "curvenet/io.hpp"
+
+namespace curvenet {
+inline namespace v1 {
+namespace {
+
+std::string lowercaseExtension(const std::string &path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char &c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+// stdio rather than ifstream: fopen/fread set errno, so the error can say
+// why ("No such file or directory", "Permission denied", "Is a directory").
+std::string readWholeFile(const std::string &path) {
+  std::unique_ptr<std::FILE, int (*)(std::FILE *)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!f) throw InputError(path, {}, std::string("cannot open: ") + std::strerror(errno));
+  std::string text;
+  char buffer[1 << 16];
+  for (;;) {
+    std::size_t n = std::fread(buffer, 1, sizeof buffer, f.get());
+    text.append(buffer, n);
+    if (n < sizeof buffer) break;
+  }
+  if (std::ferror(f.get())) throw InputError(path, {}, std::string("cannot read: ") + std::strerror(errno));
+  return text;
+}
+
+// Little-endian bytes whatever the host order, as the PLY header promises.
+template <typename T> void putLittleEndian(std::string &out, T value) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  unsigned char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));
+  if constexpr (std::endian::native == std::endian::big)
+    for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(bytes[i], bytes[sizeof(T) - 1 - i]);
+  out.append(reinterpret_cast<const char *>(bytes), sizeof(T));
+}
+
+void checkMesh(const Mesh &mesh) {
+  CURVENET_CHECK(mesh.normals.empty() || mesh.normals.size() == mesh.positions.size(),
+                 "normals " + std::to_string(mesh.normals.size()) + " vs positions " + std::to_string(mesh.positions.size()));
+  for (const auto &t : mesh.triangles)
+    for (std::uint32_t v : t)
+      CURVENET_CHECK(v < mesh.positions.size(),
+                     "triangle index " + std::to_string(v) + " vs " + std::to_string(mesh.positions.size()) + " positions");
+}
+
+} // namespace
+
+NetworkDescription readNetworkFile(const std::string &path) {
+  const std::string ext = lowercaseExtension(path);
+  if (ext != ".json" && ext != ".lop")
+    throw InputError(path, {}, "unknown network file extension \"" + ext + "\" (expected .json or .lop)");
+  const std::string text = readWholeFile(path);
+  if (ext == ".lop") return parseLop(text, path);
+  NetworkDescription d = parseNetworkJson(text, path);
+  // The name is optional in the document; reports still want one.
+  if (d.name.empty()) d.name = std::filesystem::path(path).stem().string();
+  return d;
+}
+
+NetworkDescription loadNetworkInput(const std::string &input) {
+  constexpr std::string_view prefix = "builtin:";
+  if (input.starts_with(prefix)) return builtinNetwork(input.substr(prefix.size()));
+  return readNetworkFile(input);
+}
+
+void writeFileAtomically(const std::string &path, const std::function<void(std::ostream &)> &writer) {
+  // pid + a process-wide counter make the temporary unique among concurrent
+  // writers (threads here, other processes) aiming at the same folder.
+  static std::atomic<std::uint64_t> counter{0};
+  const std::string temp = path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  try {
+    {
+      std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+      if (!out) throw InputError(path, {}, "cannot create temporary file " + temp + ": " + std::strerror(errno));
+      writer(out);
+      out.flush();
+      if (!out) throw InputError(path, {}, std::string("write failed: ") + std::strerror(errno));
+      out.close();
+      if (out.fail()) throw InputError(path, {}, std::string("closing the file failed: ") + std::strerror(errno));
+    }
+    std::error_code ec;
+    std::filesystem::rename(temp, path, ec);
+    if (ec) throw InputError(path, {}, "cannot move the finished file into place: " + ec.message());
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(temp, ignored);
+    throw;
+  }
+}
+
+void writeObj(const Mesh &mesh, std::ostream &out) {
+  checkMesh(mesh);
+  const bool hasNormals = !mesh.normals.empty();
+  // Formatted into one buffer with %.17g (round-trippable doubles) and
+  // written once: iostream formatting per number is several times slower.
+  std::string text = "# curvenet mesh: " + std::to_string(mesh.positions.size()) + " vertices, " +
+                     std::to_string(mesh.triangles.size()) + " triangles\n";
+  char line[128];
+  for (const Vec3 &p : mesh.positions) {
+    int n = std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", p.x, p.y, p.z);
+    text.append(line, static_cast<std::size_t>(n));
+  }
+  for (const Vec3 &v : mesh.normals) {
+    int n = std::snprintf(line, sizeof line, "vn %.17g %.17g %.17g\n", v.x, v.y, v.z);
+    text.append(line, static_cast<std::size_t>(n));
+  }
+  for (const auto &t : mesh.triangles) {
+    // OBJ indices are 1-based; with normals, each vertex uses its own normal.
+    unsigned long a = t[0] + 1ul, b = t[1] + 1ul, c = t[2] + 1ul;
+    int n = hasNormals ? std::snprintf(line, sizeof line, "f %lu//%lu %lu//%lu %lu//%lu\n", a, a, b, b, c, c)
+                       : std::snprintf(line, sizeof line, "f %lu %lu %lu\n", a, b, c);
+    text.append(line, static_cast<std::size_t>(n));
+  }
+  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+}
+
+void writePly(const Mesh &mesh, std::ostream &out) {
+  checkMesh(mesh);
+  const bool hasNormals = !mesh.normals.empty();
+  std::string data = "ply\nformat binary_little_endian 1.0\ncomment written by curvenet\n";
+  data += "element vertex " + std::to_string(mesh.positions.size()) + "\n";
+  data += "property float64 x\nproperty float64 y\nproperty float64 z\n";
+  if (hasNormals) data += "property float64 nx\nproperty float64 ny\nproperty float64 nz\n";
+  data += "element face " + std::to_string(mesh.triangles.size()) + "\n";
+  data += "property list uchar uint32 vertex_indices\nend_header\n";
+
+  const std::size_t vertexBytes = (hasNormals ? 6 : 3) * sizeof(double);
+  data.reserve(data.size() + mesh.positions.size() * vertexBytes + mesh.triangles.size() * (1 + 3 * sizeof(std::uint32_t)));
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    const Vec3 &p = mesh.positions[i];
+    putLittleEndian(data, p.x), putLittleEndian(data, p.y), putLittleEndian(data, p.z);
+    if (hasNormals) {
+      const Vec3 &n = mesh.normals[i];
+      putLittleEndian(data, n.x), putLittleEndian(data, n.y), putLittleEndian(data, n.z);
+    }
+  }
+  for (const auto &t : mesh.triangles) {
+    putLittleEndian(data, std::uint8_t{3});
+    for (std::uint32_t v : t) putLittleEndian(data, v);
+  }
+  out.write(data.data(), static_cast<std::streamsize>(data.size()));
+}
+
+void writeMeshFile(const Mesh &mesh, const std::string &path) {
+  const std::string ext = lowercaseExtension(path);
+  if (ext == ".obj") return writeFileAtomically(path, [&](std::ostream &out) { writeObj(mesh, out); });
+  if (ext == ".ply") return writeFileAtomically(path, [&](std::ostream &out) { writePly(mesh, out); });
+  throw InputError(path, {}, "unknown mesh file extension \"" + ext + "\" (expected .obj or .ply)");
+}
+
+} // namespace v1
+} // namespace curvenet

@@ -1,0 +1,167 @@
+#include "patches/domain.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include "curvenet/error.hpp"
+
+namespace curvenet {
+inline namespace v1 {
+
+RegularDomain::RegularDomain(int sides) : n_(sides) {
+  CURVENET_CHECK(sides >= 3, "domain needs at least 3 sides, got " + std::to_string(sides));
+  // Corner 0 at angle −π/2 − π/n puts side 0 horizontal at the bottom.
+  const double start = -std::numbers::pi / 2 - std::numbers::pi / n_;
+  for (int i = 0; i < n_; ++i) {
+    const double a = start + 2 * std::numbers::pi * i / n_;
+    corners_.push_back({std::cos(a), std::sin(a)});
+  }
+}
+
+Vec2 RegularDomain::pointOnSide(int i, double s) const { return corner(i) + (corner(i + 1) - corner(i)) * s; }
+
+void RegularDomain::sideFrame(int i, Dual u, Dual v, Dual &x, Dual &y) const {
+  const Vec2 p = corner(i), e = corner(i + 1) - corner(i);
+  const double l2 = dot(e, e);
+  const Dual qx = u - p.x, qy = v - p.y;
+  x = (qx * e.x + qy * e.y) * (1.0 / l2);
+  y = (qy * e.x - qx * e.y) * (1.0 / l2);
+}
+
+Dual RegularDomain::perpendicularDistance(int i, Dual u, Dual v) const {
+  Dual x, y;
+  sideFrame(i, u, v, x, y);
+  return y;
+}
+
+namespace {
+// Direction of a domain vector in side i's frame (side length 1).
+Vec2 inFrame(const Vec2 &e, const Vec2 &d) {
+  const double l2 = dot(e, e);
+  return {dot(d, e) / l2, cross(e, d) / l2};
+}
+} // namespace
+
+Dual RegularDomain::radialSideParameter(int i, Dual u, Dual v) const {
+  Dual x, y;
+  sideFrame(i, u, v, x, y);
+  const Vec2 e = corner(i + 1) - corner(i);
+  const Vec2 a = inFrame(e, corner(i - 1) - corner(i));     // side i−1 leaving (0,0)
+  const Vec2 b = inFrame(e, corner(i + 2) - corner(i + 1)); // side i+1 leaving (1,0)
+  const double det = cross(a, b);
+  if (std::abs(det) < 1e-12) {
+    // Sides i−1 and i+1 are parallel (n = 4): the sweep lines are parallel to them.
+    return x - y * (a.x / a.y);
+  }
+  // Intersection X = α a = (1,0) + β b of the extended sides; the sweep line
+  // through X and (x, y) meets the base line y = 0 at s.
+  const double alpha = cross(Vec2{1, 0}, b) / det;
+  const Vec2 apex = a * alpha;
+  return Dual(apex.x) - Dual(apex.y) * (x - apex.x) / (y - apex.y);
+}
+
+RegularDomain::SweepParameters RegularDomain::hermiteSweep(int i, Dual u, Dual v, bool quintic) const {
+  Dual x, y;
+  sideFrame(i, u, v, x, y);
+  const Vec2 e = corner(i + 1) - corner(i);
+  const Vec2 a = inFrame(e, corner(i - 1) - corner(i));
+  const Vec2 b = inFrame(e, corner(i + 2) - corner(i + 1));
+  // H(s) and H'(s): cubic 2s³ − 3s² + 1, or quintic 1 − 10s³ + 15s⁴ − 6s⁵.
+  auto H = [quintic](double s) -> std::array<double, 3> {
+    if (quintic)
+      return {1 - s * s * s * (10 - 15 * s + 6 * s * s), -30 * s * s * (1 - s) * (1 - s),
+              -60 * s * (1 - s) * (1 - 2 * s)};
+    return {2 * s * s * s - 3 * s * s + 1, 6 * s * s - 6 * s, 12 * s - 6};
+  };
+  // w(s) = a H(s) + b H(1 − s) and its derivative.
+  auto w = [&](double s, Vec2 &value, Vec2 &slope) {
+    const auto h0 = H(s), h1 = H(1 - s);
+    value = a * h0[0] + b * h1[0];
+    slope = a * h0[1] - b * h1[1];
+  };
+  // F(s) = (x − s) w_y(s) − y w_x(s) = 0: the point lies on the sweepline of s.
+  const double px = x.v, py = y.v;
+  auto F = [&](double s) {
+    Vec2 val, slope;
+    w(s, val, slope);
+    return (px - s) * val.y - py * val.x;
+  };
+  // Bracket sign changes on a fine grid over [0, 1] and refine by bisection
+  // (robust; the cached evaluation plans do this once per sample anyway).
+  constexpr int kGrid = 64;
+  double best = -1, bestD = INFINITY;
+  double f0 = F(0.0);
+  auto consider = [&](double s) {
+    Vec2 val, slope;
+    w(s, val, slope);
+    const double d = std::abs(val.x) > std::abs(val.y) ? (px - s) / val.x : py / val.y;
+    if (d >= -1e-9 && d < bestD) bestD = d, best = s;
+  };
+  if (f0 == 0) consider(0.0);
+  for (int k = 1; k <= kGrid; ++k) {
+    const double s1 = double(k) / kGrid, f1 = F(s1);
+    if (f1 == 0) consider(s1);
+    else if ((f0 < 0) != (f1 < 0) && f0 != 0) {
+      double lo = s1 - 1.0 / kGrid, hi = s1, flo = f0;
+      for (int it = 0; it < 60; ++it) {
+        const double mid = 0.5 * (lo + hi), fm = F(mid);
+        if ((fm < 0) == (flo < 0)) lo = mid, flo = fm;
+        else hi = mid;
+      }
+      consider(0.5 * (lo + hi));
+    }
+    f0 = f1;
+  }
+  if (best < 0) best = std::clamp(px, 0.0, 1.0); // outside the domain: nearest base point
+  // Implicit differentiation of F(s; x, y) = 0.
+  Vec2 val, slope;
+  w(best, val, slope);
+  const double Fs = -val.y + (px - best) * slope.y - py * slope.x;
+  const double sx = Fs != 0 ? -val.y / Fs : 0, sy = Fs != 0 ? val.x / Fs : 0;
+  Dual s{best, sx * x.du + sy * y.du, sx * x.dv + sy * y.dv};
+  const Dual wx = s.apply(val.x, slope.x), wy = s.apply(val.y, slope.y);
+  const Dual d = std::abs(val.x) > std::abs(val.y) ? (x - s) / wx : y / wy;
+  return {s, d};
+}
+
+Dual RegularDomain::linearSweepSideParameter(int i, Dual u, Dual v) const {
+  Dual x, y;
+  sideFrame(i, u, v, x, y);
+  const Vec2 e = corner(i + 1) - corner(i);
+  const Vec2 a = inFrame(e, corner(i - 1) - corner(i));
+  const Vec2 b = inFrame(e, corner(i + 2) - corner(i + 1));
+  const Vec2 c = b - a;
+  // (x, y) on the line from (s, 0) to a + s (1 + b − a): cross(E(s), X − A(s)) = 0,
+  // i.e. (a_x y − a_y x) + s (a_y + c_x y − c_y x) + s² c_y = 0. In a regular
+  // polygon the chord p_{i−1} p_{i+2} is parallel to side i, so c_y = 0.
+  CURVENET_CHECK(std::abs(c.y) < 1e-9, "linear sweep expects a regular domain");
+  return -(y * a.x - x * a.y) / (y * c.x + a.y);
+}
+
+void RegularDomain::wachspressDistances(Dual u, Dual v, std::vector<Dual> &distances) const {
+  // Product form of the Wachspress weights: w_i ∏_j A_j = C_i ∏_{j ≠ i−1, i} A_j,
+  // which stays finite on the sides where some A_j vanish (paper 002 Sec. 2.3).
+  std::array<Dual, 16> area;
+  for (int j = 0; j < n_; ++j) {
+    // A_j = signed area of (p_j, q, p_{j+1}), positive inside.
+    const Vec2 p = corner(j), e = corner(j + 1) - corner(j);
+    area[j] = ((v - p.y) * e.x - (u - p.x) * e.y) * 0.5;
+  }
+  std::array<Dual, 16> weight;
+  Dual total = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    const double c = 0.5 * cross(corner(i) - corner(i - 1), corner(i + 1) - corner(i));
+    Dual w = c;
+    for (int j = 0; j < n_; ++j)
+      if (j != wrap(i - 1) && j != i) w *= area[j];
+    weight[i] = w;
+    total += w;
+  }
+  distances.resize(n_);
+  for (int i = 0; i < n_; ++i) distances[i] = Dual(1.0) - (weight[i] + weight[wrap(i + 1)]) / total;
+}
+
+} // namespace v1
+} // namespace curvenet

@@ -1,0 +1,62 @@
+// The regular n-gon domain of a patch and the maps from it to the ribbons'
+// local parameters (side parameter s_i, distance parameter d_i).
+//
+// Corners p_0 … p_{n-1} lie counter-clockwise on the unit circle; side i runs
+// from p_i to p_{i+1} and is mapped onto boundary curve P_i. All maps return
+// Duals so that patches get exact derivatives.
+#pragma once
+
+#include <vector>
+
+#include "patches/dual.hpp"
+
+namespace curvenet {
+inline namespace v1 {
+
+class RegularDomain {
+public:
+  explicit RegularDomain(int sides);
+
+  int sides() const { return n_; }
+  const Vec2 &corner(int i) const { return corners_[wrap(i)]; }
+  int wrap(int i) const { return ((i % n_) + n_) % n_; }
+  /// Point at fraction s ∈ [0, 1] along side i.
+  Vec2 pointOnSide(int i, double s) const;
+
+  /// Perpendicular distance to the line of side i, in units of the side
+  /// length (0 on the side, positive inside): the Δ_i of the Gregory blends.
+  Dual perpendicularDistance(int i, Dual u, Dual v) const;
+
+  /// Radial sweep [CG84]: s_i along the line through the intersection of the
+  /// extended sides i−1 and i+1 (a parallel sweep when they do not meet).
+  Dual radialSideParameter(int i, Dual u, Dual v) const;
+
+  /// Hermite sweepline (paper 000 eq. 20): (u,v) = (s,0) + d [a H(s) + b H(1−s)]
+  /// in side i's frame. Returns s_i and d_i with derivatives (implicit
+  /// differentiation of the quartic's root). `quintic` uses the fifth-degree
+  /// Hermite polynomial of the footnote of Sec. 4.3.
+  struct SweepParameters {
+    Dual s, d;
+  };
+  SweepParameters hermiteSweep(int i, Dual u, Dual v, bool quintic = false) const;
+
+  /// Linear sweep (paper 002 Sec. 2.3): the isoline of s_i is the straight
+  /// line from the point at fraction s on side i to the point at fraction s
+  /// on the chord p_{i−1} p_{i+2}; s = 0 is side i−1 and s = 1 side i+1.
+  Dual linearSweepSideParameter(int i, Dual u, Dual v) const;
+
+  /// Wachspress distance parameter of paper 002 Sec. 2.3: d_i = 1 − λ_i − λ_{i+1}
+  /// (λ at the two ends of side i), for all sides at once.
+  void wachspressDistances(Dual u, Dual v, std::vector<Dual> &distances) const;
+
+  /// Side i's frame: maps a domain point to (x, y) where side i is (0,0)→(1,0)
+  /// and the domain lies at y > 0.
+  void sideFrame(int i, Dual u, Dual v, Dual &x, Dual &y) const;
+
+private:
+  int n_;
+  std::vector<Vec2> corners_;
+};
+
+} // namespace v1
+} // namespace curvenet

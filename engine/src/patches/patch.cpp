@@ -1,0 +1,153 @@
+#include "patches/patch.hpp"
+
+#include <algorithm>
+#include <array>
+
+#include "curvenet/error.hpp"
+
+namespace curvenet {
+inline namespace v1 {
+
+namespace {
+
+constexpr int kMaxSides = 8;
+
+/// Linear ribbon R(s, d) = P(s) + d T(s) at Dual parameters, from its jet at s.
+DualVec3 ribbonAt(const RibbonJet &j, Dual s, Dual d) {
+  return DualVec3::along(j.P, j.dP, s) + d * DualVec3::along(j.T, j.dT, s);
+}
+
+/// W = (x a + y b) / (x + y); the corner limit (x = y = 0) is finite but
+/// irrelevant, because the caller multiplies W by a vanishing factor.
+DualVec3 rationalTerm(const Vec3 &a, const Vec3 &b, Dual x, Dual y) {
+  const Dual sum = x + y;
+  if (sum.v == 0) return DualVec3::constant((a + b) * 0.5);
+  return (x / sum) * a + (y / sum) * b;
+}
+
+} // namespace
+
+DualVec3 gregoryCorrection(const CornerData &c, Dual s, Dual t, Dual gs, Dual gt) {
+  const Dual s2 = s * s, t2 = t * t;
+  DualVec3 q = DualVec3::constant(c.a00);
+  q += gs * rationalTerm(c.a10, c.b10, s, t2);
+  q += gt * rationalTerm(c.a01, c.b01, s2, t);
+  q += (gs * gt) * rationalTerm(c.a11, c.b11, s, t);
+  return q;
+}
+
+Patch::Patch(std::vector<LinearRibbon> ribbons, const SurfaceOptions &options)
+    : domain_(static_cast<int>(ribbons.size())), ribbons_(std::move(ribbons)), options_(options) {
+  CURVENET_CHECK(ribbons_.size() >= 3 && ribbons_.size() <= kMaxSides);
+}
+
+DualVec3 Patch::evaluate(double u, double v) const {
+  const Dual du = Dual::u(u), dv = Dual::vCoord(v);
+  return options_.scheme == Scheme::CompositeRibbon ? compositeRibbon(du, dv) : gregory(du, dv);
+}
+
+// Gregory corner-based patch, paper 000 eqs. 16–18 with m = 2.
+DualVec3 Patch::gregory(Dual u, Dual v) const {
+  const int n = domain_.sides();
+  std::array<Dual, kMaxSides> s, distance;
+  std::array<RibbonJet, kMaxSides> jet;
+  for (int i = 0; i < n; ++i) {
+    s[i] = options_.sweepline == Sweepline::Radial ? domain_.radialSideParameter(i, u, v)
+                                                   : domain_.hermiteSweep(i, u, v).s;
+    distance[i] = domain_.perpendicularDistance(i, u, v);
+    jet[i] = ribbons_[i].at(std::clamp(s[i].v, 0.0, 1.0));
+  }
+  // Corner blends in product form (safe on the sides):
+  // B_{i,i−1} = ∏_{j∉{i,i−1}} Δ_j² / Σ_k ∏_{j∉{k,k−1}} Δ_j².
+  std::array<Dual, kMaxSides> squared, blend;
+  for (int i = 0; i < n; ++i) squared[i] = distance[i] * distance[i];
+  Dual total = 0.0;
+  for (int i = 0; i < n; ++i) {
+    Dual product = 1.0;
+    for (int j = 0; j < n; ++j)
+      if (j != i && j != domain_.wrap(i - 1)) product *= squared[j];
+    blend[i] = product;
+    total += product;
+  }
+  DualVec3 result{};
+  for (int i = 0; i < n; ++i) {
+    const Dual b = blend[i] / total;
+    if (b.isZero()) continue; // far corner: the interpolant may be undefined there
+    const int prev = domain_.wrap(i - 1);
+    const RibbonJet &left = jet[prev], &right = jet[i];
+    // I_{i,i−1} = R_{i−1}(s_{i−1}, s_i) + R_i(s_i, 1 − s_{i−1}) − Q(s_i, 1 − s_{i−1}) (eq. 17).
+    const Dual si = s[i], ti = Dual(1.0) - s[prev];
+    const RibbonJet start = ribbons_[i].at(0.0), end = ribbons_[prev].at(1.0);
+    const CornerData corner{start.P,   end.T, -end.dP, -end.dT, // from R_{i−1}(1 − t, s): matched across t = 0
+                            start.dP, start.T, start.dT};       // from R_i(s, t): matched across s = 0
+    const DualVec3 interpolant = ribbonAt(left, s[prev], si) + ribbonAt(right, si, ti) -
+                                 gregoryCorrection(corner, si, ti, si, ti);
+    result += b * interpolant;
+  }
+  return result;
+}
+
+// Composite Ribbon patch, paper 002 Sec. 2.
+DualVec3 Patch::compositeRibbon(Dual u, Dual v) const {
+  const int n = domain_.sides();
+  std::array<Dual, kMaxSides> d, s;
+  {
+    std::vector<Dual> wachspress;
+    wachspress.reserve(kMaxSides);
+    domain_.wachspressDistances(u, v, wachspress);
+    for (int i = 0; i < n; ++i) d[i] = wachspress[i];
+  }
+  for (int i = 0; i < n; ++i) s[i] = domain_.linearSweepSideParameter(i, u, v);
+
+  auto gamma = [](Dual x) { return x / (x * 2.0 + 1.0); };
+  auto hermite0 = [](Dual x) { return x * x * (x * 2.0 - 3.0) + 1.0; }; // α0 = 2x³ − 3x² + 1
+  // Ribbon with the γ reparameterization: R_i(s, d) = P_i(s) + γ(d) T_i(s).
+  auto ribbon = [&](int i, Dual side, Dual dist) {
+    const RibbonJet j = ribbons_[domain_.wrap(i)].at(std::clamp(side.v, 0.0, 1.0));
+    return DualVec3::along(j.P, j.dP, side) + gamma(dist) * DualVec3::along(j.T, j.dT, side);
+  };
+
+  // CR blends B_i = (D_{i,i−1} + D_{i,i+1}) / Σ_j D_{j,j−1}, D = ∏ d_j² over the others.
+  std::array<Dual, kMaxSides> squared, cornerProduct;
+  for (int i = 0; i < n; ++i) squared[i] = d[i] * d[i];
+  Dual total = 0.0;
+  for (int i = 0; i < n; ++i) { // cornerProduct[i] = D_{i,i−1}
+    Dual product = 1.0;
+    for (int j = 0; j < n; ++j)
+      if (j != i && j != domain_.wrap(i - 1)) product *= squared[j];
+    cornerProduct[i] = product;
+    total += product;
+  }
+
+  DualVec3 result{};
+  for (int i = 0; i < n; ++i) {
+    const Dual blend = (cornerProduct[i] + cornerProduct[domain_.wrap(i + 1)]) / total;
+    if (blend.isZero()) continue;
+    const int prev = domain_.wrap(i - 1), next = domain_.wrap(i + 1);
+    const Dual si = s[i], di = d[i], one = 1.0;
+    // Curved ribbon C_i (a Coons patch with three sides given):
+    // C = R^l α0(s) + R α0(d) + R^r α1(s) − [Q^l α0(s) α0(d) + Q^r α1(s) α0(d)].
+    const DualVec3 centre = ribbon(i, si, di);
+    const DualVec3 leftRibbon = ribbon(prev, one - di, si);  // R_{i−1}(1 − d, s)
+    const DualVec3 rightRibbon = ribbon(next, di, one - si); // R_{i+1}(d, 1 − s)
+    const RibbonJet iStart = ribbons_[i].at(0.0), iEnd = ribbons_[i].at(1.0);
+    const RibbonJet prevEnd = ribbons_[prev].at(1.0), nextStart = ribbons_[next].at(0.0);
+    // Left corner, local (s, d): match R^l across d = 0 and R_i across s = 0.
+    const CornerData leftCorner{iStart.P,  prevEnd.T,  -prevEnd.dP, -prevEnd.dT,
+                                iStart.dP, iStart.T,   iStart.dT};
+    // Right corner, local (σ = 1 − s, d): match R^r across d = 0 and R_i across σ = 0.
+    const CornerData rightCorner{nextStart.P, nextStart.T, nextStart.dP, nextStart.dT,
+                                 -iEnd.dP,    iEnd.T,      -iEnd.dT};
+    const Dual sigma = one - si;
+    const DualVec3 leftCorrection = gregoryCorrection(leftCorner, si, di, gamma(si), gamma(di));
+    const DualVec3 rightCorrection = gregoryCorrection(rightCorner, sigma, di, gamma(sigma), gamma(di));
+    const Dual a0s = hermite0(si), a1s = one - a0s, a0d = hermite0(di);
+    const DualVec3 curved = a0s * leftRibbon + a0d * centre + a1s * rightRibbon -
+                            (a0s * a0d) * leftCorrection - (a1s * a0d) * rightCorrection;
+    result += blend * curved;
+  }
+  return Dual(0.5) * result;
+}
+
+} // namespace v1
+} // namespace curvenet

@@ -1,0 +1,216 @@
+// Tessellation pattern and mesh assembly (see curvenet/tessellate.hpp).
+//
+// Vertex numbering is fixed before any evaluation: network vertices first,
+// then the interior samples of each segment, then each face's interior
+// samples. Faces then fill disjoint ranges in parallel, and triangles are
+// concatenated in face order, so the output does not depend on threads.
+#include "curvenet/tessellate.hpp"
+
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "curvenet/error.hpp"
+
+namespace curvenet {
+inline namespace v1 {
+
+namespace {
+
+struct RowPoint {
+  std::uint32_t id;
+  double t;    ///< position along the row in [0, 1]
+  Vec2 domain; ///< domain point
+};
+
+/// Triangulates the strip between two rows running in the same direction,
+/// `lower` nearer the side; counter-clockwise in the domain.
+void zip(const std::vector<RowPoint> &lower, const std::vector<RowPoint> &upper,
+         std::vector<std::array<std::uint32_t, 3>> &out) {
+  size_t j = 0, l = 0;
+  while (j + 1 < lower.size() || l + 1 < upper.size()) {
+    const bool advanceLower =
+        l + 1 >= upper.size() || (j + 1 < lower.size() && lower[j + 1].t <= upper[l + 1].t + 1e-12);
+    if (advanceLower) {
+      out.push_back({lower[j].id, lower[j + 1].id, upper[l].id});
+      ++j;
+    } else {
+      out.push_back({lower[j].id, upper[l + 1].id, upper[l].id});
+      ++l;
+    }
+  }
+}
+
+struct Layout {
+  int resolution;
+  std::vector<int> segmentIntervals;       ///< samples per segment
+  std::vector<std::uint32_t> segmentBase;  ///< first interior sample id
+  std::vector<std::uint32_t> faceBase;     ///< first interior id of each face
+  std::uint32_t vertexCount;
+};
+
+std::uint32_t faceInteriorCount(int n, int r) {
+  return static_cast<std::uint32_t>(1 + n * (r - 1) + n * (r - 1) * (r - 2) / 2);
+}
+
+Layout makeLayout(const Surface &surface, int resolution) {
+  const Network &net = surface.network();
+  Layout layout;
+  layout.resolution = resolution;
+  layout.segmentIntervals.assign(net.segments().size(), resolution);
+  // Segments on 2-sided faces need their midpoint as a sample (a domain corner).
+  for (size_t f = 0; f < net.faces().size(); ++f)
+    if (net.faces()[f].sideCount() == 2)
+      for (const FaceSide &side : net.faces()[f].sides)
+        if (side.segments.size() == 1 && resolution % 2) layout.segmentIntervals[side.segments[0]] = resolution + 1;
+  std::uint32_t next = static_cast<std::uint32_t>(net.vertices().size());
+  for (size_t e = 0; e < net.segments().size(); ++e) {
+    layout.segmentBase.push_back(next);
+    next += static_cast<std::uint32_t>(layout.segmentIntervals[e] - 1);
+  }
+  for (int f = 0; f < surface.faceCount(); ++f) {
+    layout.faceBase.push_back(next);
+    next += faceInteriorCount(surface.domainSides(f), resolution);
+  }
+  layout.vertexCount = next;
+  return layout;
+}
+
+/// Sample ids along segment e at index j ∈ [0, intervals].
+std::uint32_t segmentSampleId(const Network &net, const Layout &layout, int e, int j) {
+  const Segment &seg = net.segments()[e];
+  if (j == 0) return static_cast<std::uint32_t>(seg.start);
+  if (j == layout.segmentIntervals[e]) return static_cast<std::uint32_t>(seg.end);
+  return layout.segmentBase[e] + static_cast<std::uint32_t>(j - 1);
+}
+
+/// Boundary rows of every domain side of face f, in domain-side order.
+std::vector<std::vector<RowPoint>> boundaryRows(const Surface &surface, const Layout &layout, int f) {
+  const Network &net = surface.network();
+  const Face &face = net.faces()[f];
+  // Loop side k as (id, side parameter) pairs, in the loop direction.
+  std::vector<std::vector<std::pair<std::uint32_t, double>>> loopSides(face.sideCount());
+  for (int k = 0; k < face.sideCount(); ++k) {
+    const FaceSide &side = face.sides[k];
+    auto &list = loopSides[k];
+    for (size_t j = 0; j < side.segments.size(); ++j) {
+      const int e = side.segments[j], m = layout.segmentIntervals[e];
+      const double b0 = j == 0 ? 0.0 : side.breaks[j - 1], b1 = j + 1 == side.segments.size() ? 1.0 : side.breaks[j];
+      for (int step = j == 0 ? 0 : 1; step <= m; ++step) {
+        const int sample = side.segmentReversed[j] ? m - step : step;
+        list.emplace_back(segmentSampleId(net, layout, e, sample), b0 + (b1 - b0) * step / m);
+      }
+    }
+  }
+  const int n = surface.domainSides(f);
+  std::vector<std::vector<RowPoint>> rows(n);
+  for (int i = 0; i < n; ++i) {
+    const Surface::DomainSideRange range = surface.domainSideRange(f, i);
+    const double width = range.sTo - range.sFrom;
+    const Vec2 p0 = surface.domainCorner(f, i), p1 = surface.domainCorner(f, i + 1);
+    for (const auto &[id, s] : loopSides[range.faceSide]) {
+      if (s < range.sFrom - 1e-12 || s > range.sTo + 1e-12) continue;
+      const double t = std::clamp((s - range.sFrom) / width, 0.0, 1.0);
+      rows[i].push_back({id, t, p0 + (p1 - p0) * t});
+    }
+    CURVENET_CHECK(rows[i].size() >= 2 && rows[i].front().t == 0.0 && rows[i].back().t == 1.0,
+                   "face " + std::to_string(f) + " domain side " + std::to_string(i) + " has no sample at a corner");
+  }
+  return rows;
+}
+
+} // namespace
+
+std::size_t estimateMeshVertices(const Surface &surface, int resolution) {
+  std::size_t count = surface.network().vertices().size() + surface.network().segments().size() * resolution;
+  for (int f = 0; f < surface.faceCount(); ++f) count += faceInteriorCount(surface.domainSides(f), resolution);
+  return count;
+}
+
+Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
+  if (options.resolution < 1) throw InputError("", "resolution", "must be at least 1");
+  const Network &net = surface.network();
+  const int r = options.resolution;
+  const Layout layout = makeLayout(surface, r);
+  const int faces = surface.faceCount();
+
+  std::optional<tbb::global_control> limit;
+  if (options.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, options.threads);
+
+  Mesh mesh;
+  mesh.positions.resize(layout.vertexCount);
+  mesh.normals.resize(layout.vertexCount);
+  std::vector<std::vector<std::vector<RowPoint>>> rows(faces);
+  tbb::parallel_for(0, faces, [&](int f) { rows[f] = boundaryRows(surface, layout, f); });
+
+  // Boundary positions come from the curves themselves; their normals from
+  // the lowest-numbered face that shows them (deterministic).
+  for (size_t v = 0; v < net.vertices().size(); ++v) mesh.positions[v] = net.vertices()[v].position;
+  for (size_t e = 0; e < net.segments().size(); ++e)
+    for (int j = 1; j < layout.segmentIntervals[e]; ++j)
+      mesh.positions[segmentSampleId(net, layout, static_cast<int>(e), j)] =
+          net.segments()[e].curve.point(double(j) / layout.segmentIntervals[e]);
+  std::vector<char> hasNormal(layout.vertexCount, 0);
+  for (int f = 0; f < faces; ++f)
+    for (const auto &row : rows[f])
+      for (const RowPoint &p : row)
+        if (!hasNormal[p.id]) {
+          mesh.normals[p.id] = surface.evaluate(f, p.domain).normal;
+          hasNormal[p.id] = 1;
+        }
+
+  std::vector<std::vector<std::array<std::uint32_t, 3>>> triangles(faces);
+  tbb::parallel_for(0, faces, [&](int f) {
+    const int n = surface.domainSides(f);
+    const std::uint32_t base = layout.faceBase[f];
+    const std::uint32_t centre = base;
+    auto spoke = [&](int i, int k) { // level k ∈ [1, r−1] on the spoke from corner i to the centre
+      return base + 1 + static_cast<std::uint32_t>(((i % n + n) % n) * (r - 1) + (k - 1));
+    };
+    const std::uint32_t interiorBase = base + 1 + static_cast<std::uint32_t>(n * (r - 1));
+    const std::uint32_t perTriangle = static_cast<std::uint32_t>((r - 1) * (r - 2) / 2);
+    auto place = [&](std::uint32_t id, const Vec2 &uv) {
+      const SurfacePoint p = surface.evaluate(f, uv);
+      mesh.positions[id] = p.point;
+      mesh.normals[id] = p.normal;
+    };
+    place(centre, {0, 0});
+    auto &out = triangles[f];
+    out.reserve(static_cast<size_t>(n) * r * r);
+    for (int i = 0; i < n; ++i) {
+      const Vec2 p0 = surface.domainCorner(f, i), p1 = surface.domainCorner(f, i + 1);
+      std::vector<RowPoint> lower = rows[f][i], upper;
+      std::uint32_t offset = interiorBase + static_cast<std::uint32_t>(i) * perTriangle;
+      for (int k = 1; k <= r; ++k) {
+        upper.clear();
+        if (k == r) {
+          upper.push_back({centre, 0.0, {0, 0}});
+        } else {
+          const Vec2 a = p0 * (1.0 - double(k) / r), b = p1 * (1.0 - double(k) / r);
+          const int m = r - k;
+          for (int j = 0; j <= m; ++j) {
+            const std::uint32_t id = j == 0 ? spoke(i, k) : (j == m ? spoke(i + 1, k) : offset++);
+            const Vec2 uv = a + (b - a) * (double(j) / m);
+            if (j < m) place(id, uv); // the spoke at j = m belongs to the next fan triangle
+            upper.push_back({id, double(j) / m, uv});
+          }
+        }
+        zip(lower, upper, out);
+        std::swap(lower, upper);
+      }
+    }
+  });
+
+  mesh.faceTriangleStart.push_back(0);
+  for (int f = 0; f < faces; ++f) {
+    mesh.triangles.insert(mesh.triangles.end(), triangles[f].begin(), triangles[f].end());
+    mesh.faceTriangleStart.push_back(static_cast<std::uint32_t>(mesh.triangles.size()));
+  }
+  return mesh;
+}
+
+} // namespace v1
+} // namespace curvenet

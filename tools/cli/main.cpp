@@ -1,0 +1,46 @@
+// curvenet — command-line front end of the engine. Exit codes: 0 success,
+// 1 bad input or failed operation (message on stderr), 2 usage errors and
+// commands whose engine part does not exist yet.
+#include <cstdio>
+#include <exception>
+#include <map>
+
+#include "commands.hpp"
+#include "curvenet/error.hpp"
+
+int main(int argc, char **argv) {
+  using namespace curvenet::cli;
+  CLI::App app{"curvenet: smooth transfinite surfaces over 3D curve networks, tessellated fast", "curvenet"};
+  app.set_version_flag("--version", std::string("curvenet ") + CURVENET_VERSION);
+  app.require_subcommand(1);
+
+  std::map<CLI::App *, std::function<int()>> actions;
+  auto track = [&](Command command) { actions[command.app] = std::move(command.run); };
+  track(addPendingCommand(app, "demo", "The main job on the built-in default network", "surface construction"));
+  track(addPendingCommand(app, "tessellate", "Tessellate every face into one watertight mesh", "surface construction"));
+  track(addCheckCommand(app));
+  track(addPendingCommand(app, "render", "Ray-traced reflection lines, isophotes and curvature maps",
+                          "the Embree renderer"));
+  track(addPendingCommand(app, "bench", "G1 vs G2 evaluation cost (paper 000 Table 1 form)",
+                          "the G2 scheme and the evaluation plans"));
+  track(addPendingCommand(app, "approximate", "G1/G2 surfaces fitted to a triangle mesh (paper 000 Fig. 10)",
+                          "mesh approximation"));
+  track(addListCommand(app));
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError &e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  try {
+    for (CLI::App *sub : app.get_subcommands())
+      if (auto it = actions.find(sub); it != actions.end()) return it->second();
+  } catch (const curvenet::InputError &e) {
+    std::fprintf(stderr, "curvenet: error: %s\n", e.what());
+    return 1;
+  } catch (const std::exception &e) {
+    std::fprintf(stderr, "curvenet: internal error: %s\n", e.what());
+    return 1;
+  }
+  return 2;
+}

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Shared set-up for tools/demo.sh and tools/test.sh: installs the Debian
+# packages curvenet needs (only the missing ones, so a second run is quick),
+# then configures and builds into build/ (incremental after the first run).
+set -euo pipefail
+
+repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+build_dir=${CURVENET_BUILD_DIR:-$repo/build}
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libtbb-dev libeigen3-dev libembree-dev libopenimageio-dev
+  libbenchmark-dev libgtest-dev libgmock-dev libhwy-dev nlohmann-json3-dev libcli11-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "curvenet setup: installing ${missing[*]}"
+  if [ "$(id -u)" -eq 0 ]; then sudo=(); elif command -v sudo >/dev/null; then sudo=(sudo); else
+    echo "curvenet setup: need root (or sudo) to install: ${missing[*]}" >&2
+    exit 1
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo[@]}" apt-get update -qq
+  "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+if [ ! -f "$build_dir/CMakeCache.txt" ]; then
+  cmake -S "$repo" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release
+fi
+cmake --build "$build_dir" -j "$(nproc)"
