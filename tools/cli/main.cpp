@@ -16,8 +16,8 @@ int main(int argc, char **argv) {
 
   std::map<CLI::App *, std::function<int()>> actions;
   auto track = [&](Command command) { actions[command.app] = std::move(command.run); };
-  track(addPendingCommand(app, "demo", "The main job on the built-in default network", "surface construction"));
-  track(addPendingCommand(app, "tessellate", "Tessellate every face into one watertight mesh", "surface construction"));
+  track(addDemoCommand(app));
+  track(addTessellateCommand(app));
   track(addCheckCommand(app));
   track(addPendingCommand(app, "render", "Ray-traced reflection lines, isophotes and curvature maps",
                           "the Embree renderer"));
