@@ -29,7 +29,9 @@ TEST_P(BuiltinNetwork, EveryInteriorSegmentHasTwoOppositelyOrientedFaces) {
   const Network network = Network::build(builtinNetwork(GetParam()));
   for (const Segment &seg : network.segments()) {
     ASSERT_GE(seg.faces[0], 0);
-    if (!seg.isBoundary()) EXPECT_NE(seg.faces[0], seg.faces[1]);
+    if (!seg.isBoundary()) {
+      EXPECT_NE(seg.faces[0], seg.faces[1]);
+    }
   }
   for (const Face &face : network.faces())
     for (int k = 0; k < face.sideCount(); ++k)
@@ -39,8 +41,8 @@ TEST_P(BuiltinNetwork, EveryInteriorSegmentHasTwoOppositelyOrientedFaces) {
 INSTANTIATE_TEST_SUITE_P(AllBuiltins, BuiltinNetwork,
                          ::testing::Values("pentagon", "sphere-dodecahedron", "ellipsoid-truncated-icosahedron",
                                            "torus-mixed", "saddle-nodes"),
-                         [](const auto &info) {
-                           std::string name = info.param;
+                         [](const ::testing::TestParamInfo<std::string> &test) {
+                           std::string name = test.param;
                            for (char &c : name)
                              if (c == '-') c = '_';
                            return name;

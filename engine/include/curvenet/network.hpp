@@ -65,6 +65,7 @@ const char *toString(VertexKind kind);
 struct Vertex {
   Vec3 position;
   std::vector<int> segments; ///< incident segments (a closed segment appears twice)
+  std::vector<Vec3> tangents; ///< unit tangent leaving the vertex along each entry of `segments`
   int valence = 0;           ///< number of segment ends at the vertex
   int independentCurves = 0; ///< valence minus the pairs of segments that continue each other
   VertexKind kind = VertexKind::General;

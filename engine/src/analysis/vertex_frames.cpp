@@ -24,17 +24,7 @@ std::vector<VertexFrame> computeVertexFrames(const Network &network) {
   }
 
   for (size_t v = 0; v < vertices.size(); ++v) {
-    std::vector<Vec3> tangents;
-    for (size_t k = 0; k < vertices[v].segments.size(); ++k) {
-      const int s = vertices[v].segments[k];
-      const Segment &seg = network.segments()[s];
-      // A closed segment appears twice: once for each end.
-      const bool startEnd = seg.start == static_cast<int>(v) &&
-                            (seg.end != seg.start || std::count(vertices[v].segments.begin(),
-                                                                vertices[v].segments.begin() + k, s) == 0);
-      const Vec3 d = seg.curve.derivatives(startEnd ? 0.0 : 1.0)[1];
-      tangents.push_back(normalized(startEnd ? d : -d));
-    }
+    const std::vector<Vec3> &tangents = vertices[v].tangents;
     Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
     for (const Vec3 &t : tangents) {
       const Eigen::Vector3d e(t.x, t.y, t.z);

@@ -149,7 +149,7 @@ Network Network::build(const NetworkDescription &description, const std::string 
   auto vertexFor = [&](const Vec3 &p) {
     for (size_t v = 0; v < net.vertices_.size(); ++v)
       if (norm(net.vertices_[v].position - p) <= tolerance) return static_cast<int>(v);
-    net.vertices_.push_back(Vertex{p, {}, 0, 0, VertexKind::General, false});
+    net.vertices_.push_back(Vertex{p, {}, {}, 0, 0, VertexKind::General, false});
     return static_cast<int>(net.vertices_.size() - 1);
   };
 
@@ -242,24 +242,17 @@ Network Network::build(const NetworkDescription &description, const std::string 
   // 5. Vertex classification (paper 000 Fig. 1).
   for (size_t v = 0; v < net.vertices_.size(); ++v) {
     Vertex &vertex = net.vertices_[v];
-    struct End {
-      int segment;
-      Vec3 tangent;
-    };
-    std::vector<End> ends;
-    for (int s : vertex.segments) {
-      ends.push_back({s, Vec3{}});
-      if (net.segments_[s].isBoundary()) vertex.onBoundary = true;
-    }
     // A closed segment is listed twice: its first listing is its start end,
     // the second its end, so the two leave in opposite directions.
     std::vector<int> seen(net.segments_.size(), 0);
-    for (End &e : ends) {
-      const Segment &seg = net.segments_[e.segment];
-      const bool useStart = seg.start == static_cast<int>(v) && (seg.end != seg.start || seen[e.segment]++ == 0);
-      Vec3 d = seg.curve.derivatives(useStart ? 0.0 : 1.0)[1];
-      e.tangent = normalized(useStart ? d : -d);
+    for (int s : vertex.segments) {
+      const Segment &seg = net.segments_[s];
+      if (seg.isBoundary()) vertex.onBoundary = true;
+      const bool useStart = seg.start == static_cast<int>(v) && (seg.end != seg.start || seen[s]++ == 0);
+      const Vec3 d = seg.curve.derivatives(useStart ? 0.0 : 1.0)[1];
+      vertex.tangents.push_back(normalized(useStart ? d : -d));
     }
+    const auto &ends = vertex.tangents;
     vertex.valence = static_cast<int>(ends.size());
     // Greedy pairing of the most opposite tangents: each pair is one curve
     // passing through the vertex.
@@ -271,7 +264,7 @@ Network Network::build(const NetworkDescription &description, const std::string 
       for (size_t i = 0; i < ends.size(); ++i)
         for (size_t j = i + 1; j < ends.size(); ++j) {
           if (paired[i] || paired[j]) continue;
-          const double angle = angleBetween(ends[i].tangent, ends[j].tangent);
+          const double angle = angleBetween(ends[i], ends[j]);
           if (angle > best) best = angle, bi = static_cast<int>(i), bj = static_cast<int>(j);
         }
       if (bi < 0) break;
