@@ -7,6 +7,8 @@
 #include <functional>
 #include <string>
 
+#include "curvenet/surface.hpp"
+
 namespace curvenet::cli {
 
 /// A registered subcommand and what it does after parsing (returns the exit code).
@@ -19,6 +21,9 @@ Command addListCommand(CLI::App &app);
 Command addCheckCommand(CLI::App &app);
 Command addTessellateCommand(CLI::App &app);
 Command addDemoCommand(CLI::App &app);
+/// The scheme named on the command line; InputError listing the available ones otherwise.
+Scheme parseScheme(const std::string &name);
+
 /// Commands whose engine part is not built yet: they say so and exit 2.
 Command addPendingCommand(CLI::App &app, const std::string &name, const std::string &summary,
                           const std::string &missing);

@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <map>
 
+#include "curvenet/continuity.hpp"
+
 namespace curvenet::cli {
 
 nlohmann::json networkReport(const Network &network, const std::string &input) {
@@ -28,6 +30,30 @@ nlohmann::json networkReport(const Network &network, const std::string &input) {
   }
   report["vertices"] = std::move(vertices);
   return report;
+}
+
+void addSurfaceReport(nlohmann::json &report, const Surface &surface, int samplesPerSegment, int resolution) {
+  report["scheme"] = schemeName(surface.options().scheme);
+  const ContinuityReport c = measureContinuity(surface, {samplesPerSegment});
+  report["continuity"] = {{"max_position_gap", c.maxPositionGap},
+                          {"max_normal_angle_deg", c.maxNormalAngleDeg},
+                          {"mean_normal_angle_deg", c.meanNormalAngleDeg},
+                          {"max_boundary_deviation", c.maxBoundaryDeviation},
+                          {"worst_normal_segment", c.worstNormalSegment},
+                          {"shared_segments", c.sharedSegments},
+                          {"samples", c.samples},
+                          {"sampling", "every shared segment at u = j/" + std::to_string(samplesPerSegment) +
+                                           ", j = 0.." + std::to_string(samplesPerSegment) +
+                                           ", from both faces; lengths relative to the diagonal"}};
+  if (const auto d = measureReferenceDeviation(surface, resolution)) {
+    report["reference"] = {{"max_deviation", d->maxDeviation},
+                           {"mean_deviation", d->meanDeviation},
+                           {"min_signed_deviation", d->minSigned},
+                           {"max_signed_deviation", d->maxSigned},
+                           {"samples", d->samples},
+                           {"sampling", "all vertices of the tessellation at resolution " +
+                                            std::to_string(d->resolution) + "; relative to the diagonal"}};
+  }
 }
 
 void printReportTable(const nlohmann::json &report) {

@@ -13,14 +13,6 @@
 
 namespace curvenet::cli {
 
-namespace {
-Scheme parseScheme(const std::string &name) {
-  if (auto s = schemeFromName(name)) return *s;
-  throw InputError("", "--scheme", "unknown or not yet available scheme '" + name +
-                                       "'; available: gregory-g1, composite-ribbon");
-}
-} // namespace
-
 Command addTessellateCommand(CLI::App &app) {
   struct Options {
     std::string input, output, scheme = "gregory-g1";
@@ -30,7 +22,7 @@ Command addTessellateCommand(CLI::App &app) {
   CLI::App *sub = app.add_subcommand("tessellate", "Tessellate every face into one watertight mesh");
   sub->add_option("INPUT", o->input, "network file (.json, .lop) or builtin:NAME")->required();
   sub->add_option("-o,--output", o->output, "output mesh (.obj or .ply)")->required();
-  sub->add_option("--scheme", o->scheme, "gregory-g1 | composite-ribbon");
+  sub->add_option("--scheme", o->scheme, "surface scheme (see curvenet check --help)")->capture_default_str();
   sub->add_option("--resolution", o->resolution, "intervals per segment")->check(CLI::Range(1, 4096));
   sub->add_option("--threads", o->threads, "worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
   return {sub, [o] {
@@ -54,8 +46,17 @@ Command addDemoCommand(CLI::App &app) {
             const Network network = Network::build(builtinNetwork(defaultBuiltinName()), input);
             std::filesystem::create_directories(*out);
             nlohmann::json report = networkReport(network, input);
-            for (Scheme scheme : {Scheme::GregoryG1, Scheme::CompositeRibbon}) {
+            for (Scheme scheme : availableSchemes()) {
               const Surface surface = Surface::build(network, {scheme});
+              nlohmann::json figures;
+              addSurfaceReport(figures, surface, 64, 32);
+              report["schemes"][schemeName(scheme)] = figures;
+              std::printf("%s: max normal angle %.3g deg, max position gap %.3g, reference deviation max %.3g mean %.3g "
+                          "(relative to the diagonal)\n",
+                          schemeName(scheme).c_str(), figures["continuity"]["max_normal_angle_deg"].get<double>(),
+                          figures["continuity"]["max_position_gap"].get<double>(),
+                          figures.contains("reference") ? figures["reference"]["max_deviation"].get<double>() : 0.0,
+                          figures.contains("reference") ? figures["reference"]["mean_deviation"].get<double>() : 0.0);
               const Mesh mesh = tessellate(surface, {32, 0});
               const std::string path = *out + "/" + defaultBuiltinName() + "-" + schemeName(scheme) + ".obj";
               writeMeshFile(mesh, path);

@@ -33,6 +33,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "curvenet/network.hpp"
 
@@ -45,6 +46,8 @@ enum class Sweepline { Radial, Hermite };
 /// "gregory-g1", "composite-ribbon"; and back (std::nullopt for unknown names).
 std::string schemeName(Scheme scheme);
 std::optional<Scheme> schemeFromName(const std::string &name);
+/// Every scheme this build provides, in a fixed order.
+std::vector<Scheme> availableSchemes();
 
 struct SurfaceOptions {
   Scheme scheme = Scheme::GregoryG1;

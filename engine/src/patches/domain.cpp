@@ -91,15 +91,26 @@ RegularDomain::SweepParameters RegularDomain::hermiteSweep(int i, Dual u, Dual v
   // Bracket sign changes on a fine grid over [0, 1] and refine by bisection
   // (robust; the cached evaluation plans do this once per sample anyway).
   constexpr int kGrid = 64;
-  double best = -1, bestD = INFINITY;
-  double f0 = F(0.0);
+  // In a triangle the sweeplines of side i cross near the opposite corner
+  // (the cubic blend of a and b does not aim every line at it), so a point
+  // there lies on two sweeplines. Of the roots with d ≥ 0 take the one
+  // nearest the radial parameter, the sweep this one perturbs; elsewhere the
+  // root is unique and the rule changes nothing.
+  const double radial = radialSideParameter(i, Dual(u.v), Dual(v.v)).v;
+  double best = -1, bestDistance = INFINITY;
   auto consider = [&](double s) {
     Vec2 val, slope;
     w(s, val, slope);
     const double d = std::abs(val.x) > std::abs(val.y) ? (px - s) / val.x : py / val.y;
-    if (d >= -1e-9 && d < bestD) bestD = d, best = s;
+    if (d >= -1e-9 && std::abs(s - radial) < bestDistance) bestDistance = std::abs(s - radial), best = s;
   };
-  if (f0 == 0) consider(0.0);
+  double f0 = F(0.0);
+  // A point on side i−1 or i+1 has its root exactly at an end of [0, 1],
+  // where rounding may leave F a hair off zero with no sign change: accept
+  // the ends within a rounding tolerance.
+  const double tolerance = 1e-13 * (1 + std::abs(px) + std::abs(py)) * (norm(a) + norm(b));
+  if (std::abs(f0) <= tolerance) consider(0.0);
+  if (std::abs(F(1.0)) <= tolerance) consider(1.0);
   for (int k = 1; k <= kGrid; ++k) {
     const double s1 = double(k) / kGrid, f1 = F(s1);
     if (f1 == 0) consider(s1);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "curvenet/error.hpp"
 
@@ -42,6 +43,15 @@ Patch::Patch(std::vector<LinearRibbon> ribbons, const SurfaceOptions &options)
 }
 
 DualVec3 Patch::evaluate(double u, double v) const {
+  // A point meant to be a corner but computed along a side (p_i + (p_{i+1} −
+  // p_i)·1) misses it by a rounding error; there the blends of the far
+  // corners are not exactly zero while their sweep parameters are singular
+  // (the radial sweep of a triangle meets at the opposite corner). Snap to
+  // the exact corner, where the far blends vanish identically.
+  for (int i = 0; i < domain_.sides(); ++i) {
+    const Vec2 &c = domain_.corner(i);
+    if (std::abs(u - c.x) <= 1e-14 && std::abs(v - c.y) <= 1e-14) u = c.x, v = c.y;
+  }
   const Dual du = Dual::u(u), dv = Dual::vCoord(v);
   return options_.scheme == Scheme::CompositeRibbon ? compositeRibbon(du, dv) : gregory(du, dv);
 }

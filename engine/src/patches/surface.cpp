@@ -18,8 +18,10 @@ std::string schemeName(Scheme scheme) {
   return "?";
 }
 
+std::vector<Scheme> availableSchemes() { return {Scheme::GregoryG1, Scheme::CompositeRibbon}; }
+
 std::optional<Scheme> schemeFromName(const std::string &name) {
-  for (Scheme s : {Scheme::GregoryG1, Scheme::CompositeRibbon})
+  for (Scheme s : availableSchemes())
     if (schemeName(s) == name) return s;
   return std::nullopt;
 }

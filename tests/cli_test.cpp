@@ -1,0 +1,113 @@
+// End-to-end tests of the `curvenet` program (DESIGN.md §6): the JSON
+// report's figures, mesh output, and clear failures on bad input that leave
+// no output file behind.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliRun {
+  int exitCode;
+  std::string out, err;
+};
+
+/// Runs the CLI with `arguments` (already shell-quoted), capturing stdout and stderr.
+CliRun runCli(const std::string &arguments) {
+  const fs::path errFile = fs::temp_directory_path() / ("curvenet-cli-test-" + std::to_string(::getpid()) + ".err");
+  const std::string command = std::string("'") + CURVENET_CLI + "' " + arguments + " 2>'" + errFile.string() + "'";
+  CliRun run{-1, {}, {}};
+  FILE *pipe = ::popen(command.c_str(), "r");
+  if (!pipe) return run;
+  std::array<char, 4096> buffer{};
+  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) run.out.append(buffer.data(), n);
+  const int status = ::pclose(pipe);
+  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream err(errFile);
+  run.err.assign(std::istreambuf_iterator<char>(err), {});
+  fs::remove(errFile);
+  return run;
+}
+
+class Cli : public ::testing::Test {
+protected:
+  void SetUp() override {
+    if (std::string(CURVENET_CLI).empty()) GTEST_SKIP() << "the command-line program is not built";
+    dir = fs::temp_directory_path() / ("curvenet-cli-" + std::to_string(::getpid()) + "-" +
+                                       ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir);
+  }
+  void TearDown() override {
+    if (!dir.empty()) fs::remove_all(dir);
+  }
+  fs::path dir;
+};
+
+} // namespace
+
+TEST_F(Cli, CheckReportsContinuityAndReferenceFigures) {
+  for (const std::string scheme : {"gregory-g1", "composite-ribbon"}) {
+    const CliRun run = runCli("check builtin:sphere-dodecahedron --json --samples 16 --resolution 8 --scheme " + scheme);
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const auto report = nlohmann::json::parse(run.out);
+    EXPECT_EQ(report["scheme"], scheme);
+    EXPECT_EQ(report["patches"], 12);
+    EXPECT_EQ(report["vertices"].size(), 20u);
+    EXPECT_LE(report["continuity"]["max_position_gap"].get<double>(), 1e-12);
+    EXPECT_LE(report["continuity"]["max_normal_angle_deg"].get<double>(), 1e-6);
+    EXPECT_GE(report["continuity"]["mean_normal_angle_deg"].get<double>(), 0.0);
+    EXPECT_EQ(report["continuity"]["shared_segments"], 30);
+    const double deviation = report["reference"]["max_deviation"].get<double>();
+    EXPECT_GT(deviation, 0.0);
+    EXPECT_LT(deviation, 0.05);
+    EXPECT_LE(report["reference"]["mean_deviation"].get<double>(), deviation);
+    EXPECT_NE(report["reference"]["sampling"].get<std::string>().find("resolution 8"), std::string::npos);
+  }
+}
+
+TEST_F(Cli, TessellateWritesAClosedMesh) {
+  const fs::path out = dir / "torus.obj";
+  const CliRun run = runCli("tessellate builtin:torus-mixed --resolution 3 -o '" + out.string() + "'");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  std::ifstream in(out);
+  std::string line;
+  std::size_t vertices = 0, faces = 0;
+  while (std::getline(in, line)) {
+    vertices += line.rfind("v ", 0) == 0;
+    faces += line.rfind("f ", 0) == 0;
+  }
+  EXPECT_GT(faces, 0u);
+  // A closed triangle mesh of genus 1: V − E + F = 0 with E = 3F/2.
+  EXPECT_EQ(static_cast<long>(vertices) - static_cast<long>(faces) / 2, 0);
+}
+
+TEST_F(Cli, BadInputFailsClearlyAndWritesNothing) {
+  const fs::path out = dir / "out.obj";
+  const fs::path broken = dir / "broken.json";
+  std::ofstream(broken) << R"({"curves": [], "faces": [{"sides": [{"curve": 3, "from": 0, "to": 1}]}]})";
+  struct Expectation {
+    std::string arguments, mentions;
+  };
+  for (const Expectation &e : std::vector<Expectation>{
+           {"tessellate builtin:no-such-network -o '" + out.string() + "'", "no-such-network"},
+           {"tessellate builtin:pentagon --scheme no-such-scheme -o '" + out.string() + "'", "no-such-scheme"},
+           {"tessellate builtin:pentagon -o '" + (dir / "out.xyz").string() + "'", "out.xyz"},
+           {"tessellate '" + broken.string() + "' -o '" + out.string() + "'", "broken.json"},
+           {"check '" + (dir / "missing.json").string() + "'", "missing.json"},
+       }) {
+    const CliRun run = runCli(e.arguments);
+    EXPECT_NE(run.exitCode, 0) << e.arguments;
+    EXPECT_NE(run.err.find(e.mentions), std::string::npos) << e.arguments << "\nstderr: " << run.err;
+    EXPECT_FALSE(fs::exists(out)) << e.arguments;
+    EXPECT_FALSE(fs::exists(dir / "out.xyz")) << e.arguments;
+  }
+}
