@@ -268,3 +268,23 @@ TEST(Curve, InvalidInputThrowsInputError) {
   expectCurveError([&] { ok.restricted(-0.1, 0.4); });
   expectCurveError([&] { ok.reparameterized(2, 2); });
 }
+
+// Found by the network-builder fuzzer: a unit-size curve 2e6 away from the
+// origin made the adaptive arc-length rule chase a relative accuracy that
+// rounding forbids, for seconds per curve. It must agree with the same curve
+// at the origin to the accuracy the coordinates allow, and a cusp inside a
+// span must not stall it either.
+TEST(BSplineCurve, ArcLengthFarFromTheOriginAndAtACusp) {
+  const std::vector<Vec3> near{{0, -2, -2}, {0, -2.2, -2.2}, {0, -2.2, -2.2}, {0, -2, -2}};
+  std::vector<Vec3> far = near;
+  for (Vec3 &p : far) p.x += 2e6;
+  const double reference = BSplineCurve::bezier(near).arcLength();
+  EXPECT_NEAR(BSplineCurve::bezier(far).arcLength(), reference, 1e-8 * reference);
+
+  // Cusp at t = 1/2: the speed has a kink there. Compare with a fine polyline.
+  const BSplineCurve cusp = BSplineCurve::bezier({{0, 0, 0}, {1, 1, 0}, {0, 1, 0}, {1, 0, 0}});
+  double polyline = 0;
+  const int steps = 200000;
+  for (int k = 0; k < steps; ++k) polyline += norm(cusp.point((k + 1.0) / steps) - cusp.point(double(k) / steps));
+  EXPECT_NEAR(cusp.arcLength(), polyline, 1e-8);
+}

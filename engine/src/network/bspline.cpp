@@ -292,13 +292,23 @@ double BSplineCurve::arcLength(double a, double b) const {
     for (size_t i = 0; i < kGaussX.size(); ++i) s += kGaussW[i] * (speed(m - h * kGaussX[i]) + speed(m + h * kGaussX[i]));
     return s * h;
   };
-  // Adaptive bisection: accept when the halves agree with the whole.
-  auto adaptive = [&](auto &&self, double lo, double hi, double whole, int depth) -> double {
+  // Adaptive bisection with an absolute tolerance that halves with the
+  // interval, so the total error stays below 1e-13 of the span's length.
+  // Where the speed has a kink or a zero (a cusp inside a span) the halves
+  // never agree to a relative 1e-13; the absolute split still terminates
+  // after a few levels around the bad point, and a fixed budget of
+  // subdivisions bounds the work for any input. The speed cannot be more
+  // accurate than the rounding of control-point differences: a small curve
+  // far from the origin (coordinates ~1e6, size ~1) sets a floor on the
+  // tolerance, measured in the same units.
+  int budget = 1 << 12;
+  double magnitude = 0;
+  for (const Vec3 &p : points_) magnitude = std::max({magnitude, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  auto adaptive = [&](auto &&self, double lo, double hi, double whole, double tolerance) -> double {
     double mid = 0.5 * (lo + hi);
     double left = gauss(lo, mid), right = gauss(mid, hi);
-    if (depth >= 30 || std::abs(left + right - whole) <= 1e-13 * std::max(std::abs(left + right), 1e-300))
-      return left + right;
-    return self(self, lo, mid, left, depth + 1) + self(self, mid, hi, right, depth + 1);
+    if (--budget <= 0 || !(mid > lo && mid < hi) || std::abs(left + right - whole) <= tolerance) return left + right;
+    return self(self, lo, mid, left, 0.5 * tolerance) + self(self, mid, hi, right, 0.5 * tolerance);
   };
   // Integrate span by span: the speed is smooth inside each knot span.
   double total = 0;
@@ -307,7 +317,10 @@ double BSplineCurve::arcLength(double a, double b) const {
     double k = knots_[i];
     if (k <= lo) continue;
     double hi = std::min(k, b);
-    total += adaptive(adaptive, lo, hi, gauss(lo, hi), 0);
+    const double whole = gauss(lo, hi);
+    const double spanWidth = i > 0 && k > knots_[i - 1] ? k - knots_[i - 1] : 1.0;
+    const double roundingFloor = 1e-15 * magnitude * degree_ * (hi - lo) / spanWidth;
+    total += adaptive(adaptive, lo, hi, whole, std::max(1e-13 * std::abs(whole), roundingFloor));
     lo = hi;
     if (lo >= b) break;
   }

@@ -1,0 +1,37 @@
+// What every harness does with a description that parsed: build the
+// topology, the G¹ surfaces of both schemes, and a coarse tessellation.
+// Bad input must surface as InputError only; anything else (a crash, a
+// sanitizer report, an InternalError, a hang) is a finding.
+#pragma once
+
+#include <cstdio>
+#include <cstdlib>
+
+#include "curvenet/error.hpp"
+#include "curvenet/network.hpp"
+#include "curvenet/surface.hpp"
+#include "curvenet/tessellate.hpp"
+
+namespace curvenet::fuzz {
+
+inline void exercise(const NetworkDescription &description) {
+  try {
+    // Keep single inputs cheap so that the fuzzer explores breadth, not size.
+    std::size_t controlPoints = 0;
+    for (const BSplineCurve &c : description.curves) controlPoints += c.controlPoints().size();
+    if (controlPoints > 2000 || description.faces.size() > 64) return;
+    const Network network = Network::build(description, "fuzz");
+    for (Scheme scheme : {Scheme::GregoryG1, Scheme::CompositeRibbon}) {
+      const Surface surface = Surface::build(network, {scheme});
+      const Mesh mesh = tessellate(surface, {2, 1});
+      if (mesh.positions.size() != mesh.normals.size()) std::abort();
+    }
+  } catch (const InputError &) {
+    // refused with a message: the expected outcome for bad input
+  } catch (const InternalError &e) {
+    std::fprintf(stderr, "internal error: %s\n", e.what());
+    std::abort();
+  }
+}
+
+} // namespace curvenet::fuzz
