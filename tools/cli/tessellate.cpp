@@ -13,13 +13,11 @@
 
 namespace curvenet::cli {
 
-namespace {
 Scheme parseScheme(const std::string &name) {
   if (auto s = schemeFromName(name)) return *s;
   throw InputError("", "--scheme", "unknown or not yet available scheme '" + name +
                                        "'; available: gregory-g1, composite-ribbon");
 }
-} // namespace
 
 Command addTessellateCommand(CLI::App &app) {
   struct Options {
