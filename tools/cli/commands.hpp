@@ -7,7 +7,9 @@
 #include <functional>
 #include <string>
 
+#include "curvenet/mesh.hpp"
 #include "curvenet/surface.hpp"
+#include "render.hpp"
 
 namespace curvenet::cli {
 
@@ -21,9 +23,22 @@ Command addListCommand(CLI::App &app);
 Command addCheckCommand(CLI::App &app);
 Command addTessellateCommand(CLI::App &app);
 Command addDemoCommand(CLI::App &app);
-/// The scheme named on the command line; InputError listing the available ones otherwise.
+Command addRenderCommand(CLI::App &app);
+
+/// The scheme for a --scheme value; InputError listing the known ones otherwise.
 Scheme parseScheme(const std::string &name);
 
+/// A picture with the mesh it shows and the render time (seconds).
+struct RenderedPicture {
+  Mesh mesh;
+  render::Image image;
+  double seconds = 0;
+};
+/// Tessellates at `resolution`, computes the patch curvature for mean/gauss
+/// modes, and renders (shared by `render` and `demo`).
+RenderedPicture renderPicture(const Surface &surface, const render::RenderOptions &options, int resolution);
+/// "wrote PATH (size, mode, range, triangles, time, rays/s)".
+void printPictureLine(const std::string &path, const RenderedPicture &picture);
 /// Commands whose engine part is not built yet: they say so and exit 2.
 Command addPendingCommand(CLI::App &app, const std::string &name, const std::string &summary,
                           const std::string &missing);

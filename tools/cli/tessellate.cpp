@@ -65,6 +65,31 @@ Command addDemoCommand(CLI::App &app) {
                                                        {"triangles", mesh.triangles.size()}};
               std::printf("wrote %s (%zu triangles)\n", path.c_str(), mesh.triangles.size());
             }
+            // Pictures: one reflection-line image per scheme in this list (a
+            // scheme this build does not know is skipped), and a mean
+            // curvature map of the first.
+            const std::vector<std::string> pictureSchemes = {"gregory-g1", "gregory-g2"};
+            bool curvatureDone = false;
+            for (const std::string &name : pictureSchemes) {
+              const auto scheme = schemeFromName(name);
+              if (!scheme) continue;
+              const Surface surface = Surface::build(network, {*scheme});
+              std::vector<render::Mode> modes = {render::Mode::Reflection};
+              if (!curvatureDone) modes.push_back(render::Mode::Mean), curvatureDone = true;
+              for (render::Mode mode : modes) {
+                render::RenderOptions options;
+                options.width = 640;
+                options.height = 480;
+                options.mode = mode;
+                options.boundaries = true;
+                const RenderedPicture picture = renderPicture(surface, options, 32);
+                const std::string path = *out + "/" + render::modeName(mode) + "-" + name + ".png";
+                render::writeImage(picture.image, path);
+                report["pictures"].push_back({{"file", path}, {"scheme", name}, {"mode", render::modeName(mode)},
+                                              {"value_range", picture.image.valueRange}});
+                printPictureLine(path, picture);
+              }
+            }
             const std::string reportPath = *out + "/report.json";
             writeFileAtomically(reportPath, [&](std::ostream &s) { s << report.dump(2) << "\n"; });
             std::printf("wrote %s\n", reportPath.c_str());

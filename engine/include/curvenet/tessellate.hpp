@@ -25,6 +25,8 @@ struct TessellationOptions {
   int resolution = 16;
   /// Worker threads: 0 = all cores, 1 = serial.
   int threads = 0;
+  /// Also fill Mesh::domainPoints (16 bytes more per vertex).
+  bool recordDomainPoints = false;
 };
 
 /// Vertices per face interior + boundaries, a quick estimate for memory checks.

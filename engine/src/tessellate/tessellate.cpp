@@ -143,6 +143,8 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
   Mesh mesh;
   mesh.positions.resize(layout.vertexCount);
   mesh.normals.resize(layout.vertexCount);
+  const bool record = options.recordDomainPoints;
+  if (record) mesh.domainPoints.resize(layout.vertexCount);
   std::vector<std::vector<std::vector<RowPoint>>> rows(faces);
   tbb::parallel_for(0, faces, [&](int f) { rows[f] = boundaryRows(surface, layout, f); });
 
@@ -160,6 +162,7 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
         if (!hasNormal[p.id]) {
           mesh.normals[p.id] = surface.evaluate(f, p.domain).normal;
           hasNormal[p.id] = 1;
+          if (record) mesh.domainPoints[p.id] = {f, p.domain};
         }
 
   std::vector<std::vector<std::array<std::uint32_t, 3>>> triangles(faces);
@@ -176,6 +179,7 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
       const SurfacePoint p = surface.evaluate(f, uv);
       mesh.positions[id] = p.point;
       mesh.normals[id] = p.normal;
+      if (record) mesh.domainPoints[id] = {f, uv};
     };
     place(centre, {0, 0});
     auto &out = triangles[f];

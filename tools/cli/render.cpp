@@ -1,0 +1,105 @@
+// curvenet render INPUT -o FILE.{png,exr} [--scheme S] [--mode M] [--size WxH]
+// [--view AZ,EL] [--stripes K] [--boundaries] [--resolution R] [--threads T]
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <regex>
+
+#include "commands.hpp"
+#include "curvenet/curvature.hpp"
+#include "curvenet/error.hpp"
+#include "curvenet/io.hpp"
+#include "curvenet/surface.hpp"
+#include "curvenet/tessellate.hpp"
+#include "render.hpp"
+
+namespace curvenet::cli {
+
+RenderedPicture renderPicture(const Surface &surface, const render::RenderOptions &options, int resolution) {
+  const bool curvatureMode = options.mode == render::Mode::Mean || options.mode == render::Mode::Gauss;
+  TessellationOptions t;
+  t.resolution = resolution;
+  t.threads = options.threads;
+  t.recordDomainPoints = curvatureMode;
+  RenderedPicture out;
+  out.mesh = tessellate(surface, t);
+  std::vector<double> values;
+  if (curvatureMode) {
+    CurvatureOptions c;
+    c.threads = options.threads;
+    for (const CurvatureSample &s : meshCurvature(surface, out.mesh, c))
+      values.push_back(options.mode == render::Mode::Mean ? s.mean : s.gauss);
+  }
+  const auto start = std::chrono::steady_clock::now();
+  out.image = render::renderMesh(out.mesh, options, values);
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+void printPictureLine(const std::string &path, const RenderedPicture &p) {
+  std::printf("wrote %s (%dx%d, %s", path.c_str(), p.image.width, p.image.height,
+              render::modeName(p.image.mode).c_str());
+  if (p.image.mode == render::Mode::Mean || p.image.mode == render::Mode::Gauss)
+    std::printf(", colour range [%.6g, %.6g]", -p.image.valueRange, p.image.valueRange);
+  std::printf(", %zu triangles, %.3g s, %.3g Mrays/s)\n", p.mesh.triangles.size(), p.seconds,
+              p.image.rays / p.seconds * 1e-6);
+}
+
+Command addRenderCommand(CLI::App &app) {
+  struct Options {
+    std::string input, output, scheme = "gregory-g1", mode = "reflection", size = "800x600", view = "30,30";
+    double stripes = 8;
+    bool boundaries = false;
+    int resolution = 32, threads = 0;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App *sub = app.add_subcommand("render", "Ray-traced reflection lines, isophotes and curvature maps");
+  sub->add_option("INPUT", o->input, "network file (.json, .lop) or builtin:NAME")->required();
+  sub->add_option("-o,--output", o->output, "output image (.png 8-bit sRGB, .exr float with a phase channel)")
+      ->required();
+  sub->add_option("--scheme", o->scheme, "gregory-g1 | composite-ribbon");
+  sub->add_option("--mode", o->mode, "reflection | isophote | mean | gauss");
+  sub->add_option("--size", o->size, "image size WxH (default 800x600)");
+  sub->add_option("--view", o->view, "camera azimuth,elevation in degrees (default 30,30)");
+  sub->add_option("--stripes", o->stripes, "light lines per half turn / isophote stripes (default 8)");
+  sub->add_flag("--boundaries", o->boundaries, "overlay the patch boundaries");
+  sub->add_option("--resolution", o->resolution, "tessellation intervals per segment (default 32)")
+      ->check(CLI::Range(1, 4096));
+  sub->add_option("--threads", o->threads, "worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  return {sub, [o] {
+            // Every option is checked before any work, so a mistake costs nothing and writes nothing.
+            const std::string ext = std::filesystem::path(o->output).extension().string();
+            if (ext != ".png" && ext != ".exr" && ext != ".PNG" && ext != ".EXR")
+              throw InputError(o->output, {}, "unknown image extension \"" + ext + "\" (expected .png or .exr)");
+            const Scheme scheme = parseScheme(o->scheme);
+            render::RenderOptions r;
+            if (auto m = render::modeFromName(o->mode)) r.mode = *m;
+            else throw InputError("", "--mode", "unknown mode '" + o->mode + "'; available: reflection, isophote, mean, gauss");
+            std::smatch match;
+            static const std::regex sizePattern(R"(^([0-9]{1,5})[xX]([0-9]{1,5})$)");
+            if (!std::regex_match(o->size, match, sizePattern))
+              throw InputError("", "--size", "expected WxH, e.g. 800x600, got '" + o->size + "'");
+            r.width = std::stoi(match[1]);
+            r.height = std::stoi(match[2]);
+            if (r.width < 1 || r.height < 1 || r.width > 16384 || r.height > 16384)
+              throw InputError("", "--size", "width and height must lie in [1, 16384]");
+            static const std::regex viewPattern(R"(^\s*([-+]?[0-9]*\.?[0-9]+)\s*,\s*([-+]?[0-9]*\.?[0-9]+)\s*$)");
+            if (!std::regex_match(o->view, match, viewPattern))
+              throw InputError("", "--view", "expected AZ,EL in degrees, e.g. 30,30, got '" + o->view + "'");
+            r.azimuth = std::stod(match[1]);
+            r.elevation = std::stod(match[2]);
+            if (!(o->stripes > 0)) throw InputError("", "--stripes", "must be positive");
+            r.stripes = o->stripes;
+            r.boundaries = o->boundaries;
+            r.threads = o->threads;
+
+            const Network network = Network::build(loadNetworkInput(o->input), o->input);
+            const Surface surface = Surface::build(network, {scheme});
+            const RenderedPicture picture = renderPicture(surface, r, o->resolution);
+            render::writeImage(picture.image, o->output);
+            printPictureLine(o->output, picture);
+            return 0;
+          }};
+}
+
+} // namespace curvenet::cli

@@ -1,0 +1,411 @@
+// Embree primary-ray renderer and OpenImageIO writer (see render.hpp).
+#include "render.hpp"
+
+#include <embree3/rtcore.h>
+#include <OpenImageIO/imageio.h>
+#include <tbb/blocked_range2d.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <numbers>
+
+#include <unistd.h>
+
+#include "curvenet/error.hpp"
+
+namespace curvenet::render {
+
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+const Vec3 kBackground{0.20, 0.22, 0.25};
+const Vec3 kDark{0.03, 0.03, 0.035}, kLight{0.92, 0.92, 0.90};
+const Vec3 kBoundary{1.0, 0.42, 0.05};
+
+// Pixel-centre sample first (it alone gives phase and face), then a rotated
+// 2×2 grid; equal weights.
+constexpr double kSamples[5][2] = {{0.5, 0.5}, {0.375, 0.125}, {0.875, 0.375}, {0.625, 0.875}, {0.125, 0.625}};
+
+double smoothstep(double a, double b, double x) {
+  const double t = std::clamp((x - a) / (b - a), 0.0, 1.0);
+  return t * t * (3 - 2 * t);
+}
+
+/// White band where fract(phase) ∈ [¼, ¾], soft edges 0.08 of a period wide.
+double stripe(double phase) {
+  const double b = phase - std::floor(phase);
+  constexpr double e = 0.04;
+  return smoothstep(0.25 - e, 0.25 + e, b) - smoothstep(0.75 - e, 0.75 + e, b);
+}
+
+Vec3 mix(const Vec3 &a, const Vec3 &b, double t) { return a * (1 - t) + b * t; }
+
+/// Diverging map over t ∈ [−1, 1]: the cool–warm end colours (Moreland 2009)
+/// through a light grey, interpolated in linear RGB.
+Vec3 diverging(double t) {
+  const Vec3 cold{0.085, 0.133, 0.525}, mid{0.80, 0.80, 0.80}, warm{0.47, 0.0, 0.02};
+  return t < 0 ? mix(mid, cold, -t) : mix(mid, warm, t);
+}
+
+struct Camera {
+  Vec3 eye, forward, right, up, back;
+  double tanHalfH, tanHalfV;
+};
+
+Camera frame(const Mesh &mesh, const RenderOptions &o) {
+  const BoundingBox box = mesh.bounds();
+  const double az = o.azimuth * std::numbers::pi / 180, el = o.elevation * std::numbers::pi / 180;
+  Camera c;
+  c.back = {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
+  c.forward = -c.back;
+  // z is up unless the camera looks (almost) straight along it.
+  const Vec3 worldUp = std::abs(c.back.z) > 0.999 ? Vec3{-std::cos(az), -std::sin(az), 0} : Vec3{0, 0, 1};
+  c.right = normalized(cross(c.forward, worldUp));
+  c.up = cross(c.right, c.forward);
+  c.tanHalfV = std::tan(15.0 * std::numbers::pi / 180);
+  c.tanHalfH = c.tanHalfV * o.width / o.height;
+  // The bounding sphere about the box centre: the model fills the frame from any view.
+  double radius = 1e-12;
+  for (const Vec3 &p : mesh.positions) radius = std::max(radius, norm(p - box.center()));
+  const double halfFov = std::atan(std::min(c.tanHalfH, c.tanHalfV));
+  c.eye = box.center() + c.back * (1.04 * radius / std::sin(halfFov));
+  return c;
+}
+
+struct EmbreeScene {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  std::vector<float> vertices; // x y z pad: 16-byte stride, safe for Embree's vector loads
+  ~EmbreeScene() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+};
+
+void checkDevice(RTCDevice device, const char *what) {
+  const RTCError e = rtcGetDeviceError(device);
+  if (e != RTC_ERROR_NONE) throw std::runtime_error(std::string("Embree: ") + what + " failed (error " + std::to_string(e) + ")");
+}
+
+std::unique_ptr<EmbreeScene> buildScene(const Mesh &mesh) {
+  auto s = std::make_unique<EmbreeScene>();
+  s->device = rtcNewDevice(nullptr);
+  if (!s->device) throw std::runtime_error("Embree: cannot create a device");
+  s->vertices.resize(4 * mesh.positions.size() + 4);
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    s->vertices[4 * i + 0] = static_cast<float>(mesh.positions[i].x);
+    s->vertices[4 * i + 1] = static_cast<float>(mesh.positions[i].y);
+    s->vertices[4 * i + 2] = static_cast<float>(mesh.positions[i].z);
+  }
+  s->scene = rtcNewScene(s->device);
+  // Robust traversal: no ray slips through a shared edge of the watertight mesh.
+  rtcSetSceneFlags(s->scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(s->scene, RTC_BUILD_QUALITY_HIGH);
+  RTCGeometry g = rtcNewGeometry(s->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, s->vertices.data(), 0, 4 * sizeof(float),
+                             mesh.positions.size());
+  // Mesh::triangles is a packed array of three uint32 per triangle: shared as is.
+  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.triangles.data(), 0,
+                             3 * sizeof(std::uint32_t), mesh.triangles.size());
+  rtcCommitGeometry(g);
+  rtcAttachGeometry(s->scene, g);
+  rtcReleaseGeometry(g);
+  rtcCommitScene(s->scene);
+  checkDevice(s->device, "scene build");
+  return s;
+}
+
+/// Per triangle, bit k set when the edge opposite corner k is a patch
+/// boundary (its two triangles belong to different faces) or a mesh border.
+std::vector<std::uint8_t> boundaryEdges(const Mesh &mesh) {
+  const std::size_t t = mesh.triangles.size();
+  std::vector<std::int32_t> faceOf(t, 0);
+  for (std::size_t f = 0; f + 1 < mesh.faceTriangleStart.size(); ++f)
+    for (std::uint32_t k = mesh.faceTriangleStart[f]; k < mesh.faceTriangleStart[f + 1] && k < t; ++k)
+      faceOf[k] = static_cast<std::int32_t>(f);
+  struct Edge {
+    std::uint32_t a, b, triangle, corner;
+  };
+  std::vector<Edge> edges;
+  edges.reserve(3 * t);
+  for (std::uint32_t i = 0; i < t; ++i)
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      std::uint32_t a = mesh.triangles[i][(k + 1) % 3], b = mesh.triangles[i][(k + 2) % 3];
+      if (a > b) std::swap(a, b);
+      edges.push_back({a, b, i, k});
+    }
+  std::sort(edges.begin(), edges.end(), [](const Edge &x, const Edge &y) {
+    return x.a != y.a ? x.a < y.a : (x.b != y.b ? x.b < y.b : x.triangle < y.triangle);
+  });
+  std::vector<std::uint8_t> mask(t, 0);
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j].a == edges[i].a && edges[j].b == edges[i].b) ++j;
+    bool mark = j - i == 1; // border
+    for (std::size_t k = i + 1; k < j; ++k) mark |= faceOf[edges[k].triangle] != faceOf[edges[i].triangle];
+    if (mark)
+      for (std::size_t k = i; k < j; ++k) mask[edges[k].triangle] |= static_cast<std::uint8_t>(1u << edges[k].corner);
+    i = j;
+  }
+  return mask;
+}
+
+double automaticRange(std::span<const double> values) {
+  std::vector<double> a;
+  a.reserve(values.size());
+  for (double v : values)
+    if (std::isfinite(v)) a.push_back(std::abs(v));
+  if (a.empty()) return 1;
+  const std::size_t k = std::min(a.size() - 1, static_cast<std::size_t>(0.98 * static_cast<double>(a.size())));
+  std::nth_element(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(k), a.end());
+  return a[k] > 0 ? a[k] : 1;
+}
+
+struct Shaded {
+  Vec3 color;
+  double phase = std::numeric_limits<double>::quiet_NaN();
+  std::int32_t face = -1;
+  bool hit = false;
+};
+
+} // namespace
+
+std::string modeName(Mode mode) {
+  switch (mode) {
+  case Mode::Reflection: return "reflection";
+  case Mode::Isophote: return "isophote";
+  case Mode::Mean: return "mean";
+  case Mode::Gauss: return "gauss";
+  }
+  return "?";
+}
+
+std::optional<Mode> modeFromName(const std::string &name) {
+  for (Mode m : {Mode::Reflection, Mode::Isophote, Mode::Mean, Mode::Gauss})
+    if (modeName(m) == name) return m;
+  return std::nullopt;
+}
+
+Image renderMesh(const Mesh &mesh, const RenderOptions &o, std::span<const double> vertexValues) {
+  if (o.width < 1 || o.width > 16384 || o.height < 1 || o.height > 16384)
+    throw InputError("", "image size", "width and height must lie in [1, 16384]");
+  if (!(o.stripes > 0) || !std::isfinite(o.stripes)) throw InputError("", "stripes", "must be a positive number");
+  if (!std::isfinite(o.azimuth) || !std::isfinite(o.elevation)) throw InputError("", "view", "angles must be finite");
+  if (!(o.valueRange >= 0) || !std::isfinite(o.valueRange)) throw InputError("", "value range", "must be ≥ 0");
+  if (mesh.triangles.empty() || mesh.positions.empty()) throw InputError("", "mesh", "has no triangles");
+  if (mesh.normals.size() != mesh.positions.size()) throw InputError("", "mesh", "needs one normal per vertex");
+  const bool valueMode = o.mode == Mode::Mean || o.mode == Mode::Gauss;
+  if (valueMode && vertexValues.size() != mesh.positions.size())
+    throw InputError("", "mesh", "curvature maps need one value per vertex");
+  for (const auto &t : mesh.triangles)
+    for (std::uint32_t v : t)
+      if (v >= mesh.positions.size()) throw InputError("", "mesh", "triangle index out of range");
+
+  std::optional<tbb::global_control> limit;
+  if (o.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
+
+  const auto scene = buildScene(mesh);
+  const std::vector<std::uint8_t> edgeMask = o.boundaries ? boundaryEdges(mesh) : std::vector<std::uint8_t>{};
+  std::vector<std::int32_t> faceOf(mesh.triangles.size(), -1);
+  for (std::size_t f = 0; f + 1 < mesh.faceTriangleStart.size(); ++f)
+    for (std::uint32_t k = mesh.faceTriangleStart[f]; k < mesh.faceTriangleStart[f + 1] && k < faceOf.size(); ++k)
+      faceOf[k] = static_cast<std::int32_t>(f);
+
+  const Camera cam = frame(mesh, o);
+  Image img;
+  img.width = o.width;
+  img.height = o.height;
+  img.mode = o.mode;
+  img.stripes = o.stripes;
+  img.valueRange = valueMode ? (o.valueRange > 0 ? o.valueRange : automaticRange(vertexValues)) : 0;
+  const std::size_t pixels = static_cast<std::size_t>(o.width) * o.height;
+  img.color.assign(3 * pixels, 0.f);
+  img.phase.assign(pixels, kNaN);
+  img.coverage.assign(pixels, 0.f);
+  img.face.assign(pixels, -1);
+  img.rays = 5 * pixels;
+  const Vec3 light = normalized(cam.back + cam.up * 0.6 - cam.right * 0.4);
+  const double pixelAngle = 2 * cam.tanHalfV / o.height; // world size of a pixel per unit distance
+
+  auto shade = [&](const Vec3 &dir, const RTCRayHit &rh) -> Shaded {
+    Shaded s;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+      s.color = kBackground;
+      return s;
+    }
+    s.hit = true;
+    const std::uint32_t prim = rh.hit.primID;
+    const auto &tri = mesh.triangles[prim];
+    const double b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1 - b1 - b2;
+    s.face = faceOf[prim];
+    Vec3 n = normalized(mesh.normals[tri[0]] * b0 + mesh.normals[tri[1]] * b1 + mesh.normals[tri[2]] * b2);
+    const bool backFacing = dot(n, dir) > 0;
+    if (backFacing) n = -n; // two-sided: the inside of an open surface is shown too
+    switch (o.mode) {
+    case Mode::Reflection: {
+      const Vec3 r = dir - n * (2 * dot(dir, n));
+      s.phase = o.stripes * std::atan2(dot(r, cam.right), dot(r, cam.back)) / std::numbers::pi;
+      s.color = mix(kDark, kLight, stripe(s.phase));
+      break;
+    }
+    case Mode::Isophote:
+      s.phase = o.stripes * dot(n, light);
+      s.color = mix(kDark, kLight, stripe(s.phase));
+      break;
+    case Mode::Mean:
+    case Mode::Gauss: {
+      s.phase = vertexValues[tri[0]] * b0 + vertexValues[tri[1]] * b1 + vertexValues[tri[2]] * b2;
+      // A little diffuse light keeps the shape readable under the colours.
+      const double lit = 0.72 + 0.28 * std::abs(dot(n, light));
+      s.color = (std::isfinite(s.phase) ? diverging(std::clamp(s.phase / img.valueRange, -1.0, 1.0))
+                                        : Vec3{0.5, 0.5, 0.5}) * lit;
+      break;
+    }
+    }
+    if (backFacing) s.color = Vec3{s.color.x * 1.0, s.color.y * 0.8, s.color.z * 0.65};
+    if (!edgeMask.empty() && edgeMask[prim]) {
+      // Distance from the hit to a marked edge: barycentric k times the
+      // triangle's height over the edge opposite corner k.
+      const Vec3 p[3] = {mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]};
+      const double area2 = norm(cross(p[1] - p[0], p[2] - p[0]));
+      const double bary[3] = {b0, b1, b2};
+      double nearest = INFINITY;
+      for (int k = 0; k < 3; ++k)
+        if (edgeMask[prim] & (1u << k)) {
+          const double len = norm(p[(k + 2) % 3] - p[(k + 1) % 3]);
+          if (len > 0) nearest = std::min(nearest, bary[k] * area2 / len);
+        }
+      const double halfWidth = 0.75 * pixelAngle * rh.ray.tfar;
+      s.color = mix(s.color, kBoundary, 1 - smoothstep(0.6 * halfWidth, halfWidth, nearest));
+    }
+    return s;
+  };
+
+  RTCScene rtcScene = scene->scene;
+  tbb::parallel_for(tbb::blocked_range2d<int>(0, o.height, 16, 0, o.width, 16), [&](const auto &tile) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    for (int y = tile.rows().begin(); y != tile.rows().end(); ++y)
+      for (int x = tile.cols().begin(); x != tile.cols().end(); ++x) {
+        const std::size_t pixel = static_cast<std::size_t>(y) * o.width + x;
+        Vec3 sum;
+        int hits = 0;
+        for (int k = 0; k < 5; ++k) {
+          const double sx = (2 * (x + kSamples[k][0]) / o.width - 1) * cam.tanHalfH;
+          const double sy = (1 - 2 * (y + kSamples[k][1]) / o.height) * cam.tanHalfV;
+          const Vec3 dir = normalized(cam.forward + cam.right * sx + cam.up * sy);
+          RTCRayHit rh{};
+          rh.ray.org_x = static_cast<float>(cam.eye.x);
+          rh.ray.org_y = static_cast<float>(cam.eye.y);
+          rh.ray.org_z = static_cast<float>(cam.eye.z);
+          rh.ray.dir_x = static_cast<float>(dir.x);
+          rh.ray.dir_y = static_cast<float>(dir.y);
+          rh.ray.dir_z = static_cast<float>(dir.z);
+          rh.ray.tnear = 0.f;
+          rh.ray.tfar = std::numeric_limits<float>::infinity();
+          rh.ray.mask = 0xFFFFFFFFu;
+          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+          rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+          rtcIntersect1(rtcScene, &context, &rh);
+          const Shaded s = shade(dir, rh);
+          sum += s.color;
+          hits += s.hit;
+          if (k == 0) {
+            img.phase[pixel] = static_cast<float>(s.phase);
+            img.face[pixel] = s.face;
+          }
+        }
+        sum /= 5.0;
+        img.color[3 * pixel + 0] = static_cast<float>(sum.x);
+        img.color[3 * pixel + 1] = static_cast<float>(sum.y);
+        img.color[3 * pixel + 2] = static_cast<float>(sum.z);
+        img.coverage[pixel] = static_cast<float>(hits / 5.0);
+      }
+  });
+  checkDevice(scene->device, "ray casting");
+  return img;
+}
+
+namespace {
+
+float srgbFromLinear(float c) {
+  c = std::clamp(c, 0.f, 1.f);
+  return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1 / 2.4f) - 0.055f;
+}
+
+std::string description(const Image &img) {
+  std::string d = "curvenet render: mode " + modeName(img.mode);
+  if (img.mode == Mode::Mean || img.mode == Mode::Gauss) d += ", colour range +-" + std::to_string(img.valueRange);
+  else d += ", stripes " + std::to_string(img.stripes);
+  return d;
+}
+
+} // namespace
+
+void writeImage(const Image &img, const std::string &path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char &c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".png" && ext != ".exr")
+    throw InputError(path, {}, "unknown image extension \"" + ext + "\" (expected .png or .exr)");
+  const bool exr = ext == ".exr";
+  const std::size_t pixels = static_cast<std::size_t>(img.width) * img.height;
+  CURVENET_CHECK(img.color.size() == 3 * pixels && img.phase.size() == pixels, "image arrays do not match its size");
+
+  OIIO::ImageSpec spec(img.width, img.height, exr ? 6 : 3, exr ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+  std::vector<float> floats;
+  std::vector<unsigned char> bytes;
+  if (exr) {
+    spec.channelnames = {"R", "G", "B", "A", "phase", "face"};
+    spec.alpha_channel = 3;
+    spec.attribute("compression", "zip");
+    spec.attribute("curvenet:mode", modeName(img.mode));
+    spec.attribute("curvenet:stripes", static_cast<float>(img.stripes));
+    spec.attribute("curvenet:range", static_cast<float>(img.valueRange));
+    floats.resize(6 * pixels);
+    for (std::size_t i = 0; i < pixels; ++i) {
+      for (int c = 0; c < 3; ++c) floats[6 * i + c] = img.color[3 * i + c];
+      floats[6 * i + 3] = img.coverage[i];
+      floats[6 * i + 4] = img.phase[i];
+      floats[6 * i + 5] = static_cast<float>(img.face[i]);
+    }
+  } else {
+    bytes.resize(3 * pixels);
+    for (std::size_t i = 0; i < 3 * pixels; ++i)
+      bytes[i] = static_cast<unsigned char>(std::lround(255.f * srgbFromLinear(img.color[i])));
+    spec.attribute("oiio:ColorSpace", "sRGB");
+  }
+  spec.attribute("ImageDescription", description(img));
+  spec.attribute("Software", "curvenet");
+
+  // Same pattern as writeFileAtomically (curvenet/io.hpp), with OIIO
+  // writing the temporary by format name (its own extension would not tell).
+  static std::atomic<std::uint64_t> counter{0};
+  const std::string temp = path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  auto fail = [&](const std::string &why) {
+    std::error_code ignored;
+    std::filesystem::remove(temp, ignored);
+    throw InputError(path, {}, why);
+  };
+  {
+    auto out = OIIO::ImageOutput::create(exr ? "openexr" : "png");
+    if (!out) fail("no " + std::string(exr ? "OpenEXR" : "PNG") + " writer in OpenImageIO: " + OIIO::geterror());
+    if (!out->open(temp, spec)) fail("cannot create " + temp + ": " + out->geterror());
+    const bool ok = exr ? out->write_image(OIIO::TypeDesc::FLOAT, floats.data())
+                        : out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+    if (!ok) fail("write failed: " + out->geterror());
+    if (!out->close()) fail("closing the file failed: " + out->geterror());
+  }
+  std::error_code ec;
+  std::filesystem::rename(temp, path, ec);
+  if (ec) fail("cannot move the finished file into place: " + ec.message());
+}
+
+} // namespace curvenet::render
