@@ -1,0 +1,354 @@
+// Network analysis and curve tweaking (curvenet/analysis.hpp).
+//
+// Built-ins are cut from analytic surfaces, so their vertices must satisfy
+// the Euler constraint and the fitted curvature must be the surface's. Fans
+// of exact surface curves on a quadric graph give vertices whose curvatures
+// are known in closed form; perturbing one curve's inner control points
+// breaks Euler (and, at a non-X valence-4 or a valence-6 vertex, the vertex
+// enclosure constraint), which tweakNetwork must repair exactly without
+// moving any vertex or tangent.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "curvenet/analysis.hpp"
+#include "curvenet/builtins.hpp"
+#include "curvenet/error.hpp"
+#include "curvenet/io.hpp"
+#include "curvenet/network.hpp"
+
+using namespace curvenet;
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+double maxAbsCurvature(const VertexAnalysis &va) {
+  double m = 0;
+  for (const CurveEnd &e : va.ends) m = std::max(m, std::abs(e.normalCurvature));
+  return m;
+}
+
+// ---- built-ins ----------------------------------------------------------------
+
+class BuiltinAnalysis : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(BuiltinAnalysis, EveryVertexIsG2AdmissibleWithTinyResiduals) {
+  const Network network = Network::build(builtinNetwork(GetParam()));
+  const NetworkAnalysis analysis = analyzeNetwork(network);
+  ASSERT_EQ(analysis.vertices.size(), network.vertices().size());
+  for (const VertexAnalysis &va : analysis.vertices) {
+    SCOPED_TRACE("vertex " + std::to_string(va.vertex));
+    EXPECT_EQ(va.verdict, VertexVerdict::G2Admissible) << "Euler " << va.eulerResidualRelative;
+    // Issue acceptance: residuals ≤ 1e-5 relative to the largest |κ_i^n|.
+    const double scale = maxAbsCurvature(va);
+    ASSERT_GT(scale, 0);
+    EXPECT_LE(std::abs(va.enclosureResidual) / scale, 1e-5);
+    EXPECT_LE(va.eulerResidual / scale, 1e-5);
+    EXPECT_LE(va.tangentResidual, 1e-5);
+    // Structure: ψ sum to 2π, the ends are counter-clockwise, counts agree
+    // with the network builder.
+    double sum = 0;
+    for (double p : va.psi) {
+      sum += p;
+      EXPECT_GT(p, 0);
+    }
+    EXPECT_NEAR(sum, 2 * pi, 1e-12);
+    EXPECT_EQ(va.independentCurves, network.vertices()[va.vertex].independentCurves);
+    EXPECT_EQ(va.valence, int(va.ends.size()));
+  }
+  EXPECT_EQ(analysis.verdict, VertexVerdict::G2Admissible);
+}
+
+TEST_P(BuiltinAnalysis, CountsAgreeWithTheConstruction) {
+  const Network network = Network::build(builtinNetwork(GetParam()));
+  const NetworkAnalysis analysis = analyzeNetwork(network);
+  for (const BuiltinVertexFact &fact : builtinVertexFacts(GetParam())) {
+    auto it = std::find_if(analysis.vertices.begin(), analysis.vertices.end(), [&](const VertexAnalysis &va) {
+      return norm(va.position - fact.position) <= 1e-9 * network.diagonal();
+    });
+    ASSERT_NE(it, analysis.vertices.end());
+    EXPECT_EQ(it->valence, fact.valence);
+    EXPECT_EQ(it->independentCurves, fact.independentCurves);
+  }
+}
+
+// The fitted curvature against the reference surface, an independent method
+// (closed-form differential geometry at the projected vertex). With three or
+// more independent curves the fit is determined by the data and must be the
+// surface's (κ1, κ2, principal direction); with two it is [SV14] eq. (8)'s
+// choice, so only the data it interpolates — the curves' normal curvatures —
+// are compared, and those for every end at every vertex.
+TEST_P(BuiltinAnalysis, FittedCurvatureIsTheReferenceSurfaces) {
+  const Network network = Network::build(builtinNetwork(GetParam()));
+  ASSERT_TRUE(network.reference().has_value());
+  const NetworkAnalysis analysis = analyzeNetwork(network);
+  int compared = 0;
+  for (const VertexAnalysis &va : analysis.vertices) {
+    SCOPED_TRACE("vertex " + std::to_string(va.vertex));
+    const SurfaceFrame ref = network.reference()->closest(va.position);
+    // Our normal is oriented by the face loops; flip the reference to match.
+    const double sign = dot(ref.normal, va.normal) < 0 ? -1.0 : 1.0;
+    EXPECT_LE(angleBetween(sign * ref.normal, va.normal), 1e-6);
+    const double k1 = sign > 0 ? ref.k1 : -ref.k2, k2 = sign > 0 ? ref.k2 : -ref.k1;
+    const double scale = std::max(std::abs(k1), std::abs(k2));
+    for (const CurveEnd &end : va.ends)
+      EXPECT_NEAR(end.normalCurvature, sign * ref.normalCurvature(end.tangent), 1e-5 * scale);
+    if (va.independentCurves >= 3) {
+      ++compared;
+      EXPECT_NEAR(va.fit.tensor.k1, k1, 1e-5 * scale);
+      EXPECT_NEAR(va.fit.tensor.k2, k2, 1e-5 * scale);
+      // Principal direction, where it is defined (not near an umbilic).
+      if (k1 - k2 > 1e-3 * scale) {
+        const Vec3 e1 = sign > 0 ? ref.direction1 : cross(ref.normal, ref.direction1);
+        EXPECT_GE(std::abs(dot(va.principalDirection1, e1)), 1 - 1e-6);
+      }
+    } else {
+      for (const CurveEnd &end : va.ends)
+        EXPECT_NEAR(va.targetCurvature(end), sign * ref.normalCurvature(end.tangent), 1e-5 * scale);
+    }
+  }
+  const bool anyDetermined = std::any_of(network.vertices().begin(), network.vertices().end(),
+                                         [](const Vertex &v) { return v.independentCurves >= 3; });
+  EXPECT_EQ(compared > 0, anyDetermined);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllBuiltins, BuiltinAnalysis,
+                         ::testing::Values("pentagon", "sphere-dodecahedron", "ellipsoid-truncated-icosahedron",
+                                           "torus-mixed", "saddle-nodes"),
+                         [](const ::testing::TestParamInfo<std::string> &test) {
+                           std::string name = test.param;
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
+
+// ---- fans on a quadric graph ------------------------------------------------------
+//
+// z = f(x, y) = a x² + b y² + c x y. Over a straight line in the xy-plane f is
+// a quadratic, so every curve below is an exact surface curve: a quadratic
+// Bézier elevated to a cubic.
+
+struct Quadric {
+  double a = 0.3, b = -0.2, c = 0.15;
+  double f(double x, double y) const { return a * x * x + b * y * y + c * x * y; }
+  Vec3 lift(double x, double y) const { return {x, y, f(x, y)}; }
+  double fx(double x, double y) const { return 2 * a * x + c * y; }
+  double fy(double x, double y) const { return 2 * b * y + c * x; }
+  /// Upward unit normal and principal curvatures (k1 ≥ k2) at (x, y).
+  std::pair<double, double> principal(double x, double y) const {
+    const double gx = fx(x, y), gy = fy(x, y), W = std::sqrt(1 + gx * gx + gy * gy);
+    Eigen::Matrix2d I, II;
+    I << 1 + gx * gx, gx * gy, gx * gy, 1 + gy * gy;
+    II << 2 * a / W, c / W, c / W, 2 * b / W;
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> solver(II, I);
+    return {solver.eigenvalues()(1), solver.eigenvalues()(0)};
+  }
+  /// The surface curve over the segment A → B of the xy-plane, as a cubic Bézier.
+  BSplineCurve over(double ax, double ay, double bx, double by) const {
+    const double dx = bx - ax, dy = by - ay;
+    const Vec3 P0 = lift(ax, ay), P2 = lift(bx, by);
+    const Vec3 P1{ax + 0.5 * dx, ay + 0.5 * dy, f(ax, ay) + 0.5 * (fx(ax, ay) * dx + fy(ax, ay) * dy)};
+    return BSplineCurve::bezier({P0, (P0 + 2 * P1) / 3, (2 * P1 + P2) / 3, P2});
+  }
+};
+
+/// Rescales a cubic Bézier's inner legs (tangent directions kept): changes
+/// the curvature at both ends, nothing else of first order.
+BSplineCurve bentLegs(const BSplineCurve &c, double alpha, double beta) {
+  auto Q = c.controlPoints();
+  Q[1] = Q[0] + alpha * (Q[1] - Q[0]);
+  Q[2] = Q[3] + beta * (Q[2] - Q[3]);
+  return BSplineCurve::bezier(Q);
+}
+
+struct FanSpec {
+  double cx = 0, cy = 0, radius = 1;
+  std::vector<double> anglesDeg;   ///< increasing, gaps < 180°
+  int throughPair = -1;            ///< ends i and i + n/2 form one curve through the centre (angles opposite)
+  std::vector<double> legScale;    ///< per end: β applied to its curve (1 = exact)
+};
+
+/// Adds a fan (triangles centre, p_i, p_{i+1}) to `net`.
+void addFan(NetworkDescription &net, const Quadric &q, const FanSpec &fan) {
+  const int n = int(fan.anglesDeg.size());
+  std::vector<double> px(n), py(n);
+  for (int i = 0; i < n; ++i) {
+    const double t = fan.anglesDeg[i] * pi / 180;
+    px[i] = fan.cx + fan.radius * std::cos(t), py[i] = fan.cy + fan.radius * std::sin(t);
+  }
+  // side (curve, from, to) running from the centre out to p_i
+  std::vector<SideDescription> out(n);
+  const int opposite = fan.throughPair >= 0 ? fan.throughPair + n / 2 : -1;
+  if (fan.throughPair >= 0) {
+    const int i = fan.throughPair;
+    net.curves.push_back(q.over(px[i], py[i], px[opposite], py[opposite]));
+    const int id = int(net.curves.size()) - 1;
+    out[i] = {id, 0.5, 0.0};
+    out[opposite] = {id, 0.5, 1.0};
+  }
+  for (int i = 0; i < n; ++i) {
+    if (i == fan.throughPair || i == opposite) continue;
+    BSplineCurve radial = q.over(fan.cx, fan.cy, px[i], py[i]);
+    const double beta = fan.legScale.empty() ? 1.0 : fan.legScale[i];
+    if (beta != 1.0) radial = bentLegs(radial, 1.0, beta);
+    net.curves.push_back(radial);
+    out[i] = {int(net.curves.size()) - 1, 0.0, 1.0};
+  }
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    net.curves.push_back(q.over(px[i], py[i], px[j], py[j]));
+    const int chord = int(net.curves.size()) - 1;
+    const SideDescription back{out[j].curve, out[j].to, out[j].from};
+    net.faces.push_back({{out[i], {chord, 0.0, 1.0}, back}, ""});
+  }
+}
+
+const Quadric quadric;
+const FanSpec valence4{0, 0, 1, {0, 80, 170, 250}, -1, {}};
+const FanSpec valence6{3, 0.5, 1, {10, 60, 120, 190, 250, 290}, 0, {}};
+
+NetworkDescription twoFans(std::vector<double> scale4, std::vector<double> scale6) {
+  NetworkDescription net;
+  net.name = "two-fans";
+  FanSpec a = valence4, b = valence6;
+  a.legScale = std::move(scale4), b.legScale = std::move(scale6);
+  addFan(net, quadric, a);
+  addFan(net, quadric, b);
+  return net;
+}
+
+const VertexAnalysis &vertexAt(const NetworkAnalysis &analysis, double x, double y) {
+  const Vec3 p = quadric.lift(x, y);
+  for (const VertexAnalysis &va : analysis.vertices)
+    if (norm(va.position - p) < 1e-12) return va;
+  throw std::runtime_error("no vertex there");
+}
+
+TEST(FanAnalysis, ExactSurfaceCurvesAreG2AdmissibleWithTheSurfacesCurvature) {
+  const Network network = Network::build(twoFans({}, {}));
+  const NetworkAnalysis analysis = analyzeNetwork(network);
+  EXPECT_EQ(analysis.verdict, VertexVerdict::G2Admissible);
+  for (const auto &[spec, valence, independent] :
+       {std::tuple{valence4, 4, 4}, std::tuple{valence6, 6, 5}}) {
+    const VertexAnalysis &va = vertexAt(analysis, spec.cx, spec.cy);
+    EXPECT_EQ(va.valence, valence);
+    EXPECT_EQ(va.independentCurves, independent);
+    EXPECT_TRUE(va.enclosureApplies);
+    EXPECT_FALSE(va.formsX);
+    const auto [k1, k2] = quadric.principal(spec.cx, spec.cy);
+    EXPECT_NEAR(va.fit.tensor.k1, k1, 1e-12);
+    EXPECT_NEAR(va.fit.tensor.k2, k2, 1e-12);
+    EXPECT_LE(va.eulerResidualRelative, 1e-12);
+    EXPECT_LE(va.enclosureResidualRelative, 1e-12);
+  }
+}
+
+TEST(FanAnalysis, PerturbedCurvaturesAreFlaggedAndTweakedExactly) {
+  const NetworkDescription perturbed = twoFans({1, 1.4, 1, 1}, {1, 1.5, 1, 1, 0.7, 1});
+  const Network network = Network::build(perturbed);
+  const NetworkAnalysis before = analyzeNetwork(network);
+  for (const FanSpec &spec : {valence4, valence6}) {
+    const VertexAnalysis &va = vertexAt(before, spec.cx, spec.cy);
+    EXPECT_EQ(va.verdict, VertexVerdict::NeedsTweaking);
+    EXPECT_GT(va.eulerResidualRelative, 1e-3);
+    EXPECT_GT(va.enclosureResidualRelative, 1e-3);
+  }
+  EXPECT_EQ(before.verdict, VertexVerdict::NeedsTweaking);
+  EXPECT_EQ(before.vertices[before.worstFirst().front()].verdict, VertexVerdict::NeedsTweaking);
+
+  const TweakResult tweak = tweakNetwork(network);
+  EXPECT_EQ(tweak.tweakedVertices.size(), 2u);
+  EXPECT_EQ(tweak.moves.size(), 10u); // one per end at the two centres
+  EXPECT_GT(tweak.insertedKnots, 0);  // cubic Béziers have no room without
+  EXPECT_GT(tweak.maxMoveRelative, 1e-4);
+  EXPECT_LT(tweak.maxMoveRelative, 0.2);
+
+  // Through the native format, as `check --tweak -o` writes it.
+  const Network repaired = Network::build(parseNetworkJson(networkToJson(tweak.network)));
+  const NetworkAnalysis after = analyzeNetwork(repaired);
+  ASSERT_EQ(repaired.vertices().size(), network.vertices().size());
+  for (const FanSpec &spec : {valence4, valence6}) {
+    const VertexAnalysis &va = vertexAt(after, spec.cx, spec.cy);
+    const VertexAnalysis &old = vertexAt(before, spec.cx, spec.cy);
+    EXPECT_EQ(va.verdict, VertexVerdict::G2Admissible);
+    EXPECT_LE(va.eulerResidualRelative, 1e-10);
+    EXPECT_LE(va.enclosureResidualRelative, 1e-10);
+    // The fit is the one the tweak aimed at.
+    EXPECT_NEAR(va.fit.tensor.k1, old.fit.tensor.k1, 1e-10 * old.curvatureScale);
+    EXPECT_NEAR(va.fit.tensor.k2, old.fit.tensor.k2, 1e-10 * old.curvatureScale);
+  }
+  // Positions and tangents at every vertex unchanged; curvatures unchanged
+  // at the vertices that were not tweaked.
+  for (size_t v = 0; v < network.vertices().size(); ++v) {
+    const Vertex &a = network.vertices()[v], &b = repaired.vertices()[v];
+    EXPECT_LE(norm(a.position - b.position), 1e-12 * network.diagonal());
+    ASSERT_EQ(a.tangents.size(), b.tangents.size());
+    for (size_t i = 0; i < a.tangents.size(); ++i) EXPECT_LE(norm(a.tangents[i] - b.tangents[i]), 1e-12);
+    const VertexAnalysis &x = before.vertices[v], &y = after.vertices[v];
+    if (std::find(tweak.tweakedVertices.begin(), tweak.tweakedVertices.end(), int(v)) == tweak.tweakedVertices.end()) {
+      for (size_t i = 0; i < x.ends.size(); ++i)
+        EXPECT_NEAR(x.ends[i].normalCurvature, y.ends[i].normalCurvature, 1e-10 * x.curvatureScale);
+    }
+  }
+  EXPECT_EQ(after.verdict, VertexVerdict::G2Admissible);
+}
+
+// [HPS09] Lemma 3 in a network: four separate curves meeting as an X with
+// κ^n = 0, 0, 0, 1 pattern broken on one leg. Enclosure holds automatically,
+// Euler does not: G¹-admissible, and the tweak equalizes opposite legs.
+TEST(FanAnalysis, XWithUnequalOppositeLegsIsG1AdmissibleThenRepaired) {
+  NetworkDescription net;
+  addFan(net, quadric, {0, 0, 1, {0, 90, 180, 270}, -1, {1, 1, 1.6, 1}});
+  const Network network = Network::build(net);
+  const VertexAnalysis va = analyzeVertex(network, 0);
+  ASSERT_NEAR(norm(va.position), 0, 1e-15);
+  EXPECT_TRUE(va.formsX);
+  EXPECT_EQ(va.independentCurves, 2);
+  EXPECT_LE(va.enclosureResidualRelative, 1e-12);
+  EXPECT_GT(va.eulerResidualRelative, 1e-3);
+  EXPECT_EQ(va.verdict, VertexVerdict::G1Admissible);
+  const Network repaired = Network::build(tweakNetwork(network).network);
+  const VertexAnalysis fixed = analyzeVertex(repaired, 0);
+  EXPECT_LE(fixed.eulerResidualRelative, 1e-10);
+  EXPECT_EQ(fixed.verdict, VertexVerdict::G2Admissible);
+}
+
+TEST(FanAnalysis, NonCoplanarTangentsHaveNoTangentPlane) {
+  NetworkDescription net;
+  addFan(net, quadric, valence4);
+  // Lift one radial curve's inner control point out of the plane: its tangent
+  // at the centre tilts by ~5°.
+  auto Q = net.curves[1].controlPoints();
+  Q[1].z += 0.03;
+  net.curves[1] = BSplineCurve::bezier(Q);
+  const VertexAnalysis va = analyzeVertex(Network::build(net), 0);
+  EXPECT_GT(va.tangentResidual, 1e-2);
+  EXPECT_EQ(va.verdict, VertexVerdict::NoTangentPlane);
+}
+
+TEST(FanAnalysis, BadArgumentsAreInputErrors) {
+  const Network network = Network::build(twoFans({}, {}));
+  EXPECT_THROW(analyzeVertex(network, -1), InputError);
+  EXPECT_THROW(analyzeVertex(network, int(network.vertices().size())), InputError);
+  AnalysisOptions bad;
+  bad.curvatureTolerance = 0;
+  EXPECT_THROW(analyzeNetwork(network, bad), InputError);
+}
+
+TEST(FanAnalysis, DegreeOneCurvesCannotBeTweaked) {
+  NetworkDescription net;
+  addFan(net, quadric, {0, 0, 1, {0, 80, 170, 250}, -1, {1, 1.4, 1, 1}});
+  // Replace the chords by straight lines: their ends are not at the tweaked
+  // centre, so only radial curves matter; make one radial a line too.
+  const BSplineCurve &r = net.curves[0];
+  net.curves[0] = BSplineCurve(1, {0, 0, 1, 1}, {r.controlPoints().front(), r.controlPoints().back()});
+  const Network network = Network::build(net);
+  TweakOptions options;
+  options.eulerTolerance = 0;
+  EXPECT_THROW(tweakNetwork(network, options), InputError);
+}
+
+} // namespace
