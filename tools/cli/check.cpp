@@ -1,26 +1,51 @@
-// curvenet check INPUT [--scheme S] [--json] — network analysis and, once
-// patches exist for the scheme, the continuity report.
+// curvenet check INPUT [--scheme S] [--json] [--tweak -o FILE] — network
+// analysis (vertex enclosure, Euler constraint, curvature fit per vertex),
+// optionally the tweaked network, and, once patches exist for the scheme, the
+// continuity report.
 #include <cstdio>
 
 #include "commands.hpp"
+#include "curvenet/analysis.hpp"
 #include "curvenet/io.hpp"
 #include "curvenet/network.hpp"
 #include "report.hpp"
 
 namespace curvenet::cli {
 
+namespace {
+
+/// --tweak: repair, write atomically in the native format, re-analyse the result.
+void runTweak(const Network &network, const std::string &output, nlohmann::json &report) {
+  const TweakResult tweak = tweakNetwork(network);
+  writeFileAtomically(output, [&](std::ostream &out) { out << networkToJson(tweak.network); });
+  const Network repaired = Network::build(tweak.network, output);
+  addTweakReport(report, tweak, analyzeNetwork(repaired), output);
+}
+
+} // namespace
+
 Command addCheckCommand(CLI::App &app) {
   struct Options {
     std::string input;
     bool json = false;
+    bool tweak = false;
+    std::string output;
   };
   auto options = std::make_shared<Options>();
   CLI::App *sub = app.add_subcommand("check", "Network analysis and continuity report");
   sub->add_option("INPUT", options->input, "network file (.json, .lop) or builtin:NAME")->required();
   sub->add_flag("--json", options->json, "print one JSON object instead of tables");
+  CLI::Option *tweak = sub->add_flag("--tweak", options->tweak,
+                                     "repair the curvatures at vertices that fail the Euler constraint "
+                                     "(moves one control point per curve end along the vertex normal)");
+  CLI::Option *output = sub->add_option("-o,--output", options->output, "where --tweak writes the repaired network (.json)");
+  tweak->needs(output);
+  output->needs(tweak);
   return {sub, [options] {
             const Network network = Network::build(loadNetworkInput(options->input), options->input);
             nlohmann::json report = networkReport(network, options->input);
+            addVertexAnalysis(report, analyzeNetwork(network));
+            if (options->tweak) runTweak(network, options->output, report);
             if (options->json) std::printf("%s\n", report.dump(2).c_str());
             else printReportTable(report);
             return 0;
