@@ -161,8 +161,9 @@ struct NetworkAnalysis {
 };
 
 /// Analyses one vertex (0 ≤ vertex < network.vertices().size(), else
-/// InputError). Cost: O(valence² + faces of the network) — the tangent-plane
-/// orientation looks at the faces. Throws InputError when a curve has zero
+/// InputError). Cost: O(size of the network) — the tangent planes are fitted
+/// for all vertices at once (their orientation comes from the faces); use
+/// analyzeNetwork for many vertices. Throws InputError when a curve has zero
 /// speed at the vertex (its normal curvature is undefined there).
 VertexAnalysis analyzeVertex(const Network &network, int vertex, const AnalysisOptions &options = {});
 
