@@ -1,8 +1,11 @@
-// curvenet check INPUT [--scheme S] [--json] — network analysis and, once
-// patches exist for the scheme, the continuity report.
+// curvenet check INPUT [--scheme S] [--json] [--tweak -o FILE] — network
+// analysis (vertex enclosure, Euler constraint, curvature fit per vertex),
+// optionally the tweaked network, and the continuity and reference figures
+// of the surface built with scheme S.
 #include <cstdio>
 
 #include "commands.hpp"
+#include "curvenet/analysis.hpp"
 #include "curvenet/io.hpp"
 #include "curvenet/network.hpp"
 #include "curvenet/surface.hpp"
@@ -10,12 +13,26 @@
 
 namespace curvenet::cli {
 
+namespace {
+
+/// --tweak: repair, write atomically in the native format, re-analyse the result.
+void runTweak(const Network &network, const std::string &output, nlohmann::json &report) {
+  const TweakResult tweak = tweakNetwork(network);
+  writeFileAtomically(output, [&](std::ostream &out) { out << networkToJson(tweak.network); });
+  const Network repaired = Network::build(tweak.network, output);
+  addTweakReport(report, tweak, analyzeNetwork(repaired), output);
+}
+
+} // namespace
+
 Command addCheckCommand(CLI::App &app) {
   struct Options {
     std::string input;
     std::string scheme = "gregory-g1";
     int samples = 64, resolution = 32;
     bool json = false;
+    bool tweak = false;
+    std::string output;
   };
   auto options = std::make_shared<Options>();
   CLI::App *sub = app.add_subcommand("check", "Network analysis and continuity report");
@@ -29,10 +46,19 @@ Command addCheckCommand(CLI::App &app) {
   sub->add_option("--resolution", options->resolution, "tessellation resolution for the reference deviation")
       ->check(CLI::Range(1, 4096))
       ->capture_default_str();
+  CLI::Option *tweak = sub->add_flag("--tweak", options->tweak,
+                                     "repair the curvatures at vertices that fail the Euler constraint "
+                                     "(moves one control point per curve end along the vertex normal)");
+  CLI::Option *output = sub->add_option("-o,--output", options->output, "where --tweak writes the repaired network (.json)");
+  tweak->needs(output);
+  output->needs(tweak);
   return {sub, [options] {
+            const Scheme scheme = parseScheme(options->scheme);
             const Network network = Network::build(loadNetworkInput(options->input), options->input);
             nlohmann::json report = networkReport(network, options->input);
-            const Surface surface = Surface::build(network, {parseScheme(options->scheme)});
+            addVertexAnalysis(report, analyzeNetwork(network));
+            if (options->tweak) runTweak(network, options->output, report);
+            const Surface surface = Surface::build(network, {scheme});
             addSurfaceReport(report, surface, options->samples, options->resolution);
             if (options->json) std::printf("%s\n", report.dump(2).c_str());
             else printReportTable(report);

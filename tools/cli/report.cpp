@@ -1,7 +1,9 @@
 #include "report.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <map>
+#include <numbers>
 
 #include "curvenet/continuity.hpp"
 
@@ -56,6 +58,117 @@ void addSurfaceReport(nlohmann::json &report, const Surface &surface, int sample
   }
 }
 
+void addVertexAnalysis(nlohmann::json &report, const NetworkAnalysis &analysis) {
+  using nlohmann::json;
+  constexpr double degrees = 180 / std::numbers::pi;
+  json &vertices = report["vertices"];
+  for (const VertexAnalysis &va : analysis.vertices) {
+    json &v = vertices.at(size_t(va.vertex));
+    json psi = json::array(), kappa = json::array();
+    for (double p : va.psi) psi.push_back(p * degrees);
+    for (const CurveEnd &end : va.ends) kappa.push_back(end.normalCurvature);
+    v["valence"] = va.valence;
+    v["independent_curves"] = va.independentCurves;
+    v["normal"] = {va.normal.x, va.normal.y, va.normal.z};
+    v["tangent_residual_deg"] = va.tangentResidual * degrees;
+    v["psi_deg"] = std::move(psi);
+    v["normal_curvatures"] = std::move(kappa);
+    v["curvature_scale"] = va.curvatureScale;
+    v["enclosure_applies"] = va.enclosureApplies;
+    v["enclosure_residual"] = va.enclosureResidualRelative;
+    v["euler_residual"] = va.eulerResidualRelative;
+    v["forms_x"] = va.formsX;
+    v["k1"] = va.fit.tensor.k1;
+    v["k2"] = va.fit.tensor.k2;
+    v["lambda"] = va.fit.tensor.lambda;
+    v["principal_direction1"] = {va.principalDirection1.x, va.principalDirection1.y, va.principalDirection1.z};
+    v["verdict"] = toString(va.verdict);
+  }
+  json counts;
+  for (int k = 0; k < 4; ++k) counts[toString(VertexVerdict(k))] = analysis.verdictCounts[size_t(k)];
+  json worst = json::array();
+  for (int v : analysis.worstFirst()) worst.push_back(v);
+  report["analysis"] = {{"verdict", toString(analysis.verdict)},
+                        {"vertex_verdicts", counts},
+                        {"max_euler_residual", analysis.maxEulerResidualRelative},
+                        {"max_enclosure_residual", analysis.maxEnclosureResidualRelative},
+                        {"max_tangent_residual_deg", analysis.maxTangentResidual * degrees},
+                        {"curvature_tolerance", analysis.options.curvatureTolerance},
+                        {"tangent_tolerance_deg", analysis.options.tangentTolerance * degrees},
+                        {"worst_first", std::move(worst)}};
+}
+
+void addTweakReport(nlohmann::json &report, const TweakResult &tweak, const NetworkAnalysis &repaired,
+                    const std::string &output) {
+  using nlohmann::json;
+  json moves = json::array();
+  for (const ControlPointMove &m : tweak.moves)
+    moves.push_back({{"vertex", m.vertex},
+                     {"curve", m.curve},
+                     {"control_point", m.controlPoint},
+                     {"parameter", m.parameter},
+                     {"distance", m.distance},
+                     {"curvature_before", m.curvatureBefore},
+                     {"curvature_after", m.curvatureAfter}});
+  report["tweak"] = {{"output", output},
+                     {"tweaked_vertices", tweak.tweakedVertices},
+                     {"inserted_knots", tweak.insertedKnots},
+                     {"max_move", tweak.maxMove},
+                     {"max_move_relative", tweak.maxMoveRelative},
+                     {"moves", std::move(moves)},
+                     {"verdict_after", toString(repaired.verdict)},
+                     {"max_euler_residual_after", repaired.maxEulerResidualRelative},
+                     {"max_enclosure_residual_after", repaired.maxEnclosureResidualRelative}};
+}
+
+void printAnalysisTable(const nlohmann::json &report, int maxRows) {
+  const auto &vertices = report["vertices"];
+  const auto &analysis = report["analysis"];
+  std::printf("vertices, worst first (residuals relative to the vertex curvature scale max(|k_i|, 1/diagonal)):\n");
+  std::printf("%6s  %-8s %3s %3s %3s  %-16s %10s %10s %9s %11s %11s\n", "vertex", "kind", "val", "ind", "bnd",
+              "verdict", "euler", "enclosure", "tangent", "k1", "k2");
+  int rows = 0;
+  const auto &order = analysis["worst_first"];
+  for (const auto &index : order) {
+    if (rows++ == maxRows) break;
+    const auto &v = vertices.at(index.get<size_t>());
+    char enclosure[32];
+    if (v["enclosure_applies"].get<bool>())
+      std::snprintf(enclosure, sizeof enclosure, "%10.2e", v["enclosure_residual"].get<double>());
+    else std::snprintf(enclosure, sizeof enclosure, "%10s", "-");
+    std::printf("%6d  %-8s %3d %3d %3s  %-16s %10.2e %s %8.4f° %11.5g %11.5g%s\n", v["index"].get<int>(),
+                v["kind"].get<std::string>().c_str(), v["valence"].get<int>(), v["independent_curves"].get<int>(),
+                v["boundary"].get<bool>() ? "yes" : "no", v["verdict"].get<std::string>().c_str(),
+                v["euler_residual"].get<double>(), enclosure, v["tangent_residual_deg"].get<double>(),
+                v["k1"].get<double>(), v["k2"].get<double>(), v["forms_x"].get<bool>() ? "  X" : "");
+  }
+  if (int(order.size()) > maxRows)
+    std::printf("  ... %zu more vertices (--json lists all)\n", order.size() - size_t(maxRows));
+
+  // One line for the network.
+  const auto &counts = analysis["vertex_verdicts"];
+  const std::string verdict = analysis["verdict"].get<std::string>();
+  std::printf("\nverdict: %s (", verdict.c_str());
+  bool first = true;
+  for (const char *k : {"G2-admissible", "G1-admissible", "needs-tweaking", "no-tangent-plane"})
+    if (int c = counts[k].get<int>(); c > 0) std::printf("%s%d %s", first ? "" : ", ", c, k), first = false;
+  std::printf("; max Euler residual %.2e, max enclosure residual %.2e)", analysis["max_euler_residual"].get<double>(),
+              analysis["max_enclosure_residual"].get<double>());
+  if ((verdict == "G1-admissible" || verdict == "needs-tweaking") && !report.contains("tweak"))
+    std::printf(" — `curvenet check INPUT --tweak -o FILE.json` repairs the curvatures");
+  std::printf("\n");
+
+  if (report.contains("tweak")) {
+    const auto &t = report["tweak"];
+    std::printf("tweak: %zu vertices, %zu control points moved along the vertex normals (largest move %.3e = %.3e of "
+                "the diagonal, %d knots inserted); after: %s, max Euler residual %.2e; written to %s\n",
+                t["tweaked_vertices"].size(), t["moves"].size(), t["max_move"].get<double>(),
+                t["max_move_relative"].get<double>(), t["inserted_knots"].get<int>(),
+                t["verdict_after"].get<std::string>().c_str(), t["max_euler_residual_after"].get<double>(),
+                t["output"].get<std::string>().c_str());
+  }
+}
+
 void printReportTable(const nlohmann::json &report) {
   std::printf("network %s (%s): %d patches, %d segments, %zu vertices, diagonal %.6g\n",
               report["name"].get<std::string>().c_str(), report["input"].get<std::string>().c_str(),
@@ -63,10 +176,15 @@ void printReportTable(const nlohmann::json &report) {
               report["diagonal"].get<double>());
   std::printf("faces by number of sides:");
   for (auto &[sides, count] : report["faces_by_sides"].items()) std::printf("  %s: %d", sides.c_str(), count.get<int>());
-  std::printf("\n\n%6s  %-8s %7s %12s %9s\n", "vertex", "kind", "valence", "independent", "boundary");
-  for (const auto &v : report["vertices"])
-    std::printf("%6d  %-8s %7d %12d %9s\n", v["index"].get<int>(), v["kind"].get<std::string>().c_str(),
-                v["valence"].get<int>(), v["independent_curves"].get<int>(), v["boundary"].get<bool>() ? "yes" : "no");
+  std::printf("\n\n");
+  if (report.contains("analysis")) {
+    printAnalysisTable(report);
+  } else {
+    std::printf("%6s  %-8s %7s %12s %9s\n", "vertex", "kind", "valence", "independent", "boundary");
+    for (const auto &v : report["vertices"])
+      std::printf("%6d  %-8s %7d %12d %9s\n", v["index"].get<int>(), v["kind"].get<std::string>().c_str(),
+                  v["valence"].get<int>(), v["independent_curves"].get<int>(), v["boundary"].get<bool>() ? "yes" : "no");
+  }
   if (report.contains("continuity")) {
     const auto &c = report["continuity"];
     std::printf("\ncontinuity (%s):\n", report.value("scheme", std::string("?")).c_str());

@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "curvenet/analysis.hpp"
 #include "curvenet/network.hpp"
 #include "curvenet/surface.hpp"
 
@@ -19,6 +20,22 @@ nlohmann::json networkReport(const Network &network, const std::string &input);
 /// when the network has a reference surface, `reference.*` (measured at the
 /// vertices of a tessellation at `resolution`).
 void addSurfaceReport(nlohmann::json &report, const Surface &surface, int samplesPerSegment, int resolution);
+
+/// Adds the vertex analysis (curvenet/analysis.hpp) to a networkReport: per
+/// vertex `enclosure_residual`, `euler_residual` (both relative to the
+/// vertex's curvature scale), `k1`, `k2`, `lambda`, `tangent_residual_deg`,
+/// `forms_x`, `verdict` and more under `vertices[]`, and an `analysis` summary
+/// with the network's verdict.
+void addVertexAnalysis(nlohmann::json &report, const NetworkAnalysis &analysis);
+
+/// Adds a `tweak` object: what tweakNetwork changed, where the result went and
+/// the residuals of the repaired network.
+void addTweakReport(nlohmann::json &report, const TweakResult &tweak, const NetworkAnalysis &repaired,
+                    const std::string &output);
+
+/// The vertex table of an analysed report, worst vertices first (at most
+/// `maxRows` rows), then the one-line verdict and the tweak summary.
+void printAnalysisTable(const nlohmann::json &report, int maxRows = 30);
 
 /// Prints the report as a readable table (vertices worst first once the
 /// analysis fills residuals).

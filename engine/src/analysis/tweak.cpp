@@ -1,0 +1,223 @@
+// Curve tweaking ([SV14] Sec. 2 (iii)): give every curve end at a vertex that
+// fails the Euler constraint the normal curvature of the fitted surface
+// curvature, by one control-point move along the vertex normal per end. The
+// reasoning (which control point, why knots are inserted first) is in
+// curvenet/analysis.hpp.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+
+#include "curvenet/analysis.hpp"
+#include "curvenet/error.hpp"
+
+namespace curvenet {
+inline namespace v1 {
+
+namespace {
+
+/// One end to repair: the vertex parameter t0 on a source curve, the side of
+/// t0 the end's segment lies on, and the curvature it must get.
+struct EndTweak {
+  int vertex = -1;
+  double t0 = 0;
+  bool right = true; ///< the end's segment lies at parameters > t0
+  Vec3 normal;
+  double target = 0;
+};
+
+/// A curve under edit, in homogeneous form (w·P, w), in which knot insertion
+/// is linear also for rational curves.
+struct EditableCurve {
+  int p = 0;
+  std::vector<double> U;
+  std::vector<Vec3> wp;
+  std::vector<double> w;
+  bool rational = false;
+
+  explicit EditableCurve(const BSplineCurve &c) : p(c.degree()), U(c.knots()), rational(c.isRational()) {
+    for (size_t i = 0; i < c.controlPoints().size(); ++i) {
+      const double wi = rational ? c.weights()[i] : 1.0;
+      wp.push_back(wi * c.controlPoints()[i]);
+      w.push_back(wi);
+    }
+  }
+
+  int count() const { return int(w.size()); }
+
+  BSplineCurve curve() const {
+    std::vector<Vec3> P(wp.size());
+    for (size_t i = 0; i < wp.size(); ++i) P[i] = wp[i] / w[i];
+    return BSplineCurve(p, U, std::move(P), rational ? w : std::vector<double>{});
+  }
+
+  /// Boehm insertion of knot u (domainStart < u < domainEnd) once
+  /// (The NURBS Book, Algorithm A5.1 with r = 1): the curve is unchanged.
+  void insertKnot(double u) {
+    const int n = count();
+    const int k = int(std::upper_bound(U.begin(), U.end(), u) - U.begin()) - 1; // U[k] <= u < U[k+1]
+    std::vector<Vec3> qp(n + 1);
+    std::vector<double> qw(n + 1);
+    for (int i = 0; i <= k - p; ++i) qp[i] = wp[i], qw[i] = w[i];
+    for (int i = k; i < n; ++i) qp[i + 1] = wp[i], qw[i + 1] = w[i];
+    for (int i = k - p + 1; i <= k; ++i) {
+      const double alpha = (u - U[i]) / (U[i + p] - U[i]);
+      qp[i] = alpha * wp[i] + (1 - alpha) * wp[i - 1];
+      qw[i] = alpha * w[i] + (1 - alpha) * w[i - 1];
+    }
+    U.insert(U.begin() + k + 1, u);
+    wp = std::move(qp);
+    w = std::move(qw);
+  }
+
+  int multiplicity(double u) const { return int(std::count(U.begin(), U.end(), u)); }
+
+  /// The control point whose move changes c''(t0) on the given side and
+  /// nothing of lower order: Q_{k+2} right of t0, Q_{k−2} left of it, where
+  /// Q_k is the control point at t0 (t0 has multiplicity ≥ p).
+  int movedPoint(double t0, bool right) const {
+    if (right) {
+      const int span = int(std::upper_bound(U.begin(), U.end(), t0) - U.begin()) - 1; // last copy of t0
+      return span - p + 2;
+    }
+    const int first = int(std::lower_bound(U.begin(), U.end(), t0) - U.begin()); // first copy of t0
+    return first - 1 - 2;
+  }
+
+  /// Whether the basis function of control point j vanishes with its first
+  /// and second derivatives at parameter `other` (another vertex on the
+  /// curve): true when `other` is outside its support [U[j], U[j+p+1]], or at
+  /// a support end that is a knot of multiplicity ≤ p − 2 among its knots
+  /// (the basis function is C^{p−m} there).
+  bool leavesAlone(int j, double other) const {
+    const double lo = U[j], hi = U[j + p + 1];
+    if (other < lo || other > hi) return true;
+    if (other != lo && other != hi) return false;
+    int m = 0;
+    for (int i = j; i <= j + p + 1; ++i) m += U[i] == other;
+    return m <= p - 2;
+  }
+};
+
+/// Normal curvature c''·n / |c'|² at t0 from one side, and c' there.
+struct EndState {
+  double kappa = 0;
+  Vec3 velocity;
+};
+EndState endState(const BSplineCurve &c, double t0, bool right, const Vec3 &n) {
+  // derivatives() takes the span to the right of an interior knot; the
+  // reversed curve's right side is this curve's left side (c' flips sign,
+  // c'' does not).
+  const auto d = right ? c.derivatives(t0) : c.reversed().derivatives(c.domainStart() + c.domainEnd() - t0);
+  return {dot(d[2], n) / squaredNorm(d[1]), right ? d[1] : -d[1]};
+}
+
+} // namespace
+
+TweakResult tweakNetwork(const Network &network, const TweakOptions &options) {
+  const NetworkAnalysis analysis = analyzeNetwork(network, options.analysis);
+  const double tolerance = options.eulerTolerance < 0 ? options.analysis.curvatureTolerance : options.eulerTolerance;
+
+  TweakResult result;
+  result.network = network.description();
+  std::map<int, std::vector<EndTweak>> byCurve;
+  for (const VertexAnalysis &va : analysis.vertices) {
+    if (!(va.eulerResidualRelative > tolerance)) continue;
+    result.tweakedVertices.push_back(va.vertex);
+    for (const CurveEnd &end : va.ends)
+      byCurve[end.sourceCurve].push_back(
+          {va.vertex, end.sourceParameter, end.towardsLargerParameter, va.normal, va.targetCurvature(end)});
+  }
+
+  for (auto &[curveIndex, tweaks] : byCurve) {
+    const BSplineCurve &original = result.network.curves[curveIndex];
+    const std::string element = "curve " + std::to_string(curveIndex);
+    if (original.degree() < 2)
+      throw InputError("", element, "degree 1: a polyline has no curvature to tweak; raise its degree");
+    EditableCurve edit(original);
+    const double a = original.domainStart(), b = original.domainEnd();
+
+    // Every vertex on this curve: none of them may feel another end's move.
+    std::vector<double> pinned;
+    for (const Segment &seg : network.segments())
+      if (seg.sourceCurve == curveIndex) pinned.push_back(seg.sourceFrom), pinned.push_back(seg.sourceTo);
+    // Snap to existing knots as BSplineCurve::restricted does, so the network
+    // builder cuts the edited curve exactly at the knots inserted here.
+    const double snap = 1e-13 * (b - a);
+    auto snapped = [&](double t) {
+      for (double u : edit.U)
+        if (std::abs(u - t) <= snap) return u;
+      return t;
+    };
+    for (double &t : pinned) t = snapped(t);
+    std::sort(pinned.begin(), pinned.end());
+    pinned.erase(std::unique(pinned.begin(), pinned.end()), pinned.end());
+    for (EndTweak &tw : tweaks) tw.t0 = snapped(tw.t0);
+
+    // 1. The vertex becomes a knot of multiplicity p (its point a control point).
+    for (const EndTweak &tw : tweaks)
+      if (tw.t0 > a && tw.t0 < b)
+        for (int r = edit.multiplicity(tw.t0); r < edit.p; ++r) edit.insertKnot(tw.t0), ++result.insertedKnots;
+
+    // 2. Split the first span beyond the vertex until the moved point's basis
+    // function vanishes to second order at the neighbouring vertex. At most
+    // three splits per end: then the support ends before that vertex.
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (const EndTweak &tw : tweaks) {
+        const int j = edit.movedPoint(tw.t0, tw.right);
+        CURVENET_CHECK(j >= 0 && j < edit.count(), "moved control point " + std::to_string(j) + " of " +
+                                                       std::to_string(edit.count()));
+        const auto next = tw.right ? std::upper_bound(pinned.begin(), pinned.end(), tw.t0) : pinned.end();
+        const auto prevEnd = tw.right ? pinned.end() : std::lower_bound(pinned.begin(), pinned.end(), tw.t0);
+        const bool hasNeighbour = tw.right ? next != pinned.end() : prevEnd != pinned.begin();
+        if (!hasNeighbour) continue;
+        const double neighbour = tw.right ? *next : *(prevEnd - 1);
+        if (edit.leavesAlone(j, neighbour)) continue;
+        const auto it = std::upper_bound(edit.U.begin(), edit.U.end(), tw.t0);
+        const double split = tw.right ? 0.5 * (tw.t0 + *it)
+                                      : 0.5 * (*(std::lower_bound(edit.U.begin(), edit.U.end(), tw.t0) - 1) + tw.t0);
+        edit.insertKnot(split);
+        ++result.insertedKnots;
+        changed = true;
+        CURVENET_CHECK(result.insertedKnots < 1000, "knot insertion does not terminate on " + element);
+      }
+    }
+
+    // 3. The moves. c''(t0)·n is affine in the move δ of Q_j along n (Q_j's
+    // basis function and its derivative vanish at t0, so c and c' do not
+    // change, also for rational curves), so the unit move's effect gives δ
+    // exactly. The moves are independent by step 2.
+    const size_t firstMove = result.moves.size();
+    for (const EndTweak &tw : tweaks) {
+      const int j = edit.movedPoint(tw.t0, tw.right);
+      const EndState s0 = endState(edit.curve(), tw.t0, tw.right, tw.normal);
+      EditableCurve probe = edit;
+      probe.wp[j] += probe.w[j] * tw.normal;
+      const double perUnit = endState(probe.curve(), tw.t0, tw.right, tw.normal).kappa - s0.kappa;
+      CURVENET_CHECK(std::abs(perUnit) > 0, "control point " + std::to_string(j) + " does not reach the curvature of " +
+                                                element);
+      const double delta = (tw.target - s0.kappa) / perUnit;
+      edit.wp[j] += (edit.w[j] * delta) * tw.normal;
+      ControlPointMove move;
+      move.vertex = tw.vertex;
+      move.curve = curveIndex;
+      move.controlPoint = j;
+      move.parameter = tw.t0;
+      move.distance = delta;
+      move.curvatureBefore = s0.kappa;
+      result.moves.push_back(move);
+    }
+    const BSplineCurve tweaked = edit.curve();
+    for (size_t i = 0; i < tweaks.size(); ++i)
+      result.moves[firstMove + i].curvatureAfter = endState(tweaked, tweaks[i].t0, tweaks[i].right, tweaks[i].normal).kappa;
+    result.network.curves[curveIndex] = tweaked;
+  }
+
+  for (const ControlPointMove &move : result.moves) result.maxMove = std::max(result.maxMove, std::abs(move.distance));
+  result.maxMoveRelative = result.maxMove / network.diagonal();
+  return result;
+}
+
+} // namespace v1
+} // namespace curvenet

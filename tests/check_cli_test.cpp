@@ -1,0 +1,145 @@
+// `curvenet check` end to end: the JSON fields of the vertex analysis on a
+// built-in, the table's verdict line, and the `--tweak -o` round trip on a
+// network with perturbed curvatures, read back and re-analysed here.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "curvenet/analysis.hpp"
+#include "curvenet/builtins.hpp"
+#include "curvenet/io.hpp"
+#include "curvenet/network.hpp"
+#include "quadric_fans.hpp"
+
+using namespace curvenet;
+using namespace curvenet::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliRun {
+  int status = -1;
+  std::string out;
+};
+
+/// Runs the CLI with `args`, capturing stdout (stderr goes to stdout too).
+CliRun runCli(const std::string &args) {
+  CliRun run;
+  const std::string command = std::string(CURVENET_CLI) + " " + args + " 2>&1";
+  FILE *pipe = ::popen(command.c_str(), "r");
+  if (!pipe) return run;
+  std::array<char, 4096> buffer;
+  while (size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) run.out.append(buffer.data(), n);
+  const int status = ::pclose(pipe);
+  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+class CheckCli : public ::testing::Test {
+protected:
+  void SetUp() override {
+    if (std::string(CURVENET_CLI).empty()) GTEST_SKIP() << "the curvenet program is not built";
+    dir = fs::temp_directory_path() / ("curvenet-check-" + std::to_string(::getpid()) + "-" +
+                                       ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+  fs::path dir;
+};
+
+TEST_F(CheckCli, JsonCarriesTheVertexAnalysisOfABuiltin) {
+  const CliRun run = runCli("check builtin:torus-mixed --json");
+  ASSERT_EQ(run.status, 0) << run.out;
+  const auto report = nlohmann::json::parse(run.out);
+  // The network keys stay.
+  for (const char *key : {"patches", "segments", "faces_by_sides", "vertices", "diagonal"})
+    EXPECT_TRUE(report.contains(key)) << key;
+  EXPECT_EQ(report["analysis"]["verdict"], "G2-admissible");
+  const Network network = Network::build(builtinNetwork("torus-mixed"));
+  const NetworkAnalysis analysis = analyzeNetwork(network);
+  ASSERT_EQ(report["vertices"].size(), network.vertices().size());
+  for (const auto &v : report["vertices"]) {
+    for (const char *key : {"index", "position", "kind", "boundary", "valence", "independent_curves",
+                            "enclosure_residual", "euler_residual", "k1", "k2", "lambda", "tangent_residual_deg",
+                            "forms_x", "verdict"})
+      ASSERT_TRUE(v.contains(key)) << key;
+    const VertexAnalysis &va = analysis.vertices.at(v["index"].get<size_t>());
+    EXPECT_EQ(v["valence"].get<int>(), va.valence);
+    EXPECT_EQ(v["independent_curves"].get<int>(), va.independentCurves);
+    EXPECT_EQ(v["k1"].get<double>(), va.fit.tensor.k1);
+    EXPECT_EQ(v["k2"].get<double>(), va.fit.tensor.k2);
+    EXPECT_LE(v["euler_residual"].get<double>(), 1e-5);
+    EXPECT_LE(v["enclosure_residual"].get<double>(), 1e-5);
+    EXPECT_EQ(v["verdict"], "G2-admissible");
+  }
+}
+
+TEST_F(CheckCli, TableEndsWithAOneLineVerdictAndListsWorstFirst) {
+  const CliRun run = runCli("check builtin:saddle-nodes");
+  ASSERT_EQ(run.status, 0) << run.out;
+  EXPECT_NE(run.out.find("worst first"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("verdict: G2-admissible (13 G2-admissible"), std::string::npos) << run.out;
+}
+
+TEST_F(CheckCli, TweakWritesARepairedNetworkAtomically) {
+  NetworkDescription net;
+  net.name = "bent-fan";
+  const Quadric quadric;
+  addFan(net, quadric, {0, 0, 1, {0, 80, 170, 250}, -1, {1, 1.4, 1, 1}});
+  const fs::path input = dir / "bent.json", output = dir / "fixed.json";
+  writeFileAtomically(input.string(), [&](std::ostream &out) { out << networkToJson(net); });
+
+  const CliRun table = runCli("check " + input.string());
+  ASSERT_EQ(table.status, 0) << table.out;
+  EXPECT_NE(table.out.find("verdict: needs-tweaking"), std::string::npos) << table.out;
+
+  const CliRun run = runCli("check " + input.string() + " --tweak -o " + output.string() + " --json");
+  ASSERT_EQ(run.status, 0) << run.out;
+  const auto report = nlohmann::json::parse(run.out);
+  EXPECT_EQ(report["analysis"]["verdict"], "needs-tweaking"); // the input's
+  const auto &tweak = report["tweak"];
+  EXPECT_EQ(tweak["tweaked_vertices"], nlohmann::json::array({0}));
+  EXPECT_EQ(tweak["moves"].size(), 4u);
+  EXPECT_GT(tweak["max_move_relative"].get<double>(), 0);
+  EXPECT_EQ(tweak["verdict_after"], "G2-admissible");
+  EXPECT_LE(tweak["max_euler_residual_after"].get<double>(), 1e-10);
+  // Only the output file, no temporary left behind.
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);
+
+  const Network before = Network::build(net);
+  const Network after = Network::build(readNetworkFile(output.string()));
+  const VertexAnalysis centre = analyzeVertex(after, 0);
+  EXPECT_LE(centre.eulerResidualRelative, 1e-10);
+  EXPECT_LE(centre.enclosureResidualRelative, 1e-10);
+  ASSERT_EQ(after.vertices().size(), before.vertices().size());
+  for (size_t v = 0; v < before.vertices().size(); ++v) {
+    EXPECT_LE(norm(after.vertices()[v].position - before.vertices()[v].position), 1e-12);
+    for (size_t i = 0; i < before.vertices()[v].tangents.size(); ++i)
+      EXPECT_LE(norm(after.vertices()[v].tangents[i] - before.vertices()[v].tangents[i]), 1e-12);
+  }
+
+  // Checking the repaired file says so.
+  const CliRun again = runCli("check " + output.string());
+  EXPECT_NE(again.out.find("verdict: G2-admissible"), std::string::npos) << again.out;
+}
+
+TEST_F(CheckCli, TweakNeedsAnOutputAndBadInputIsNamed) {
+  EXPECT_EQ(runCli("check builtin:pentagon --tweak").status, 2);
+  EXPECT_EQ(runCli("check builtin:pentagon -o x.json").status, 2);
+  const CliRun missing = runCli("check " + (dir / "missing.json").string());
+  EXPECT_EQ(missing.status, 1);
+  EXPECT_NE(missing.out.find("missing.json"), std::string::npos) << missing.out;
+}
+
+} // namespace
