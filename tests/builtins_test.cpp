@@ -86,7 +86,8 @@ TEST(Builtins, NamesOrderAndDefault) {
     EXPECT_FALSE(b.summary.empty());
   }
   EXPECT_EQ(names, (std::vector<std::string>{"pentagon", "sphere-dodecahedron", "ellipsoid-truncated-icosahedron",
-                                              "torus-mixed", "saddle-nodes"}));
+                                              "torus-mixed", "saddle-nodes", "hemisphere-tjunction",
+                                              "tjunction-surrounded", "tjunction-vertex", "hull-like"}));
   EXPECT_EQ(defaultBuiltinName(), "ellipsoid-truncated-icosahedron");
 }
 

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "commands.hpp"
+#include "curvenet/bezier.hpp"
 #include "curvenet/builtins.hpp"
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
@@ -15,22 +16,26 @@ namespace curvenet::cli {
 
 Command addTessellateCommand(CLI::App &app) {
   struct Options {
-    std::string input, output, scheme = "gregory-g1";
+    std::string input, output, scheme = "gregory-g1", controlNets;
     int resolution = 16, threads = 0;
   };
   auto o = std::make_shared<Options>();
   CLI::App *sub = app.add_subcommand("tessellate", "Tessellate every face into one watertight mesh");
   sub->add_option("INPUT", o->input, "network file (.json, .lop) or builtin:NAME")->required();
   sub->add_option("-o,--output", o->output, "output mesh (.obj or .ply)")->required();
-  sub->add_option("--scheme", o->scheme, "surface scheme (see curvenet check --help)")->capture_default_str();
+  sub->add_option("--scheme", o->scheme, "gregory-g1 | composite-ribbon | bezier-g1 | coons-c0");
+  sub->add_option("--control-nets", o->controlNets, "also write the quintic control nets as JSON (bezier-g1, coons-c0)");
   sub->add_option("--resolution", o->resolution, "intervals per segment")->check(CLI::Range(1, 4096));
   sub->add_option("--threads", o->threads, "worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
   return {sub, [o] {
             const Scheme scheme = parseScheme(o->scheme);
+            if (!o->controlNets.empty() && scheme != Scheme::BezierG1 && scheme != Scheme::CoonsC0)
+              throw InputError("", "--control-nets", "needs --scheme bezier-g1 or coons-c0");
             const Network network = Network::build(loadNetworkInput(o->input), o->input);
             const Surface surface = Surface::build(network, {scheme});
             const Mesh mesh = tessellate(surface, {o->resolution, o->threads});
             writeMeshFile(mesh, o->output);
+            if (!o->controlNets.empty()) writeControlNets(surface, o->controlNets);
             std::printf("%s: %zu vertices, %zu triangles (%s, resolution %d)\n", o->output.c_str(),
                         mesh.positions.size(), mesh.triangles.size(), o->scheme.c_str(), o->resolution);
             return 0;
@@ -47,6 +52,7 @@ Command addDemoCommand(CLI::App &app) {
             std::filesystem::create_directories(*out);
             nlohmann::json report = networkReport(network, input);
             for (Scheme scheme : availableSchemes()) {
+              if (!acceptsAnyLoop(scheme)) continue; // the default network has 5- and 6-sided loops
               const Surface surface = Surface::build(network, {scheme});
               nlohmann::json figures;
               addSurfaceReport(figures, surface, 64, 32);

@@ -4,7 +4,11 @@
 // normals and principal curvatures are known everywhere along and between the
 // curves: each carries its ReferenceSurface. Curves are B-spline fits of curves
 // lying on the surface, accurate to 1e-8 of the bounding-box diagonal in
-// position and 1e-5 relative in normal curvature.
+// position and 1e-5 relative in normal curvature — except the cubic Bézier
+// networks of paper 003 (hemisphere-tjunction, tjunction-surrounded,
+// tjunction-vertex, hull-like), whose curves are cubic arcs on the sphere or
+// ellipsoid (ends and end tangents exact, ~1e-4 of the radius between) and
+// whose vertex facts are not listed.
 #pragma once
 
 #include <string>

@@ -15,6 +15,21 @@
 //    distance parameters, linear-sweep side parameters, S = ½ Σ C_i B_i. Where
 //    the two ribbons at a corner disagree (twist or tangent), the corner
 //    correction patch uses Gregory's rational terms so that G¹ still holds.
+//  * bezier-g1 — G¹ quintic Bézier patches over 4-sided cubic Bézier networks
+//    with T-junctions (paper 003, after Cho, Lee and Kim 2006): Coons-derived
+//    initial nets, vertex and edge G¹ systems, virtual rows across T-junction
+//    sides, three-rectangle subdivision of T-junctions at vertices. See
+//    curvenet/bezier.hpp for the control-net export and edge continuity.
+//  * coons-c0 — the bilinearly blended Coons patch of the four boundary
+//    curves of each face (a bicubic, written as a quintic net): the C⁰ baseline.
+//  For the two Bézier schemes every face must have 4 sides (a side may span a
+//  T-node) and every side curve must be one Bézier span of degree ≤ 3 (lower
+//  degrees are elevated; B-splines with interior knots are refused — split
+//  them into Bézier curves with their own vertices first); else InputError
+//  naming the face. Their domain is the square (regular 4-gon): with corners
+//  c_0 … c_3, (u, v) = ((x − c_0.x) / (c_1.x − c_0.x), (y − c_0.y) / (c_3.y − c_0.y)),
+//  so domain side 0 (v = 0) is face side 0, side 1 (u = 1) face side 1, side 2
+//  (v = 1, u decreasing) face side 2, side 3 (u = 0, v decreasing) face side 3.
 //
 // Domains: face f with n sides uses the regular n-gon with corners on the unit
 // circle, counter-clockwise, side i from corner i to corner i+1 mapped onto the
@@ -40,14 +55,18 @@
 namespace curvenet {
 inline namespace v1 {
 
-enum class Scheme { GregoryG1, CompositeRibbon };
+enum class Scheme { GregoryG1, CompositeRibbon, BezierG1, CoonsC0 };
 enum class Sweepline { Radial, Hermite };
 
-/// "gregory-g1", "composite-ribbon"; and back (std::nullopt for unknown names).
+/// "gregory-g1", "composite-ribbon", "bezier-g1", "coons-c0"; and back (std::nullopt for unknown names).
 std::string schemeName(Scheme scheme);
 std::optional<Scheme> schemeFromName(const std::string &name);
 /// Every scheme this build provides, in a fixed order.
 std::vector<Scheme> availableSchemes();
+/// True for the transfinite schemes, which take loops of 2 to 8 sides of any
+/// curves; false for the schemes limited to 4-sided Bézier networks
+/// (bezier-g1, coons-c0).
+bool acceptsAnyLoop(Scheme scheme);
 
 struct SurfaceOptions {
   Scheme scheme = Scheme::GregoryG1;
@@ -98,6 +117,8 @@ public:
   struct Impl;
 
 private:
+  friend struct SurfaceAccess; // engine-internal access for scheme-specific reports
+
   std::shared_ptr<const Impl> impl_;
 };
 

@@ -52,6 +52,12 @@ SpherePolyhedron pentagonCapOnSphere();
 BuiltinData torusMixed();
 BuiltinData saddleNodes();
 
+// Cubic Bézier networks with T-junctions (paper 003), see tjunctions.cpp.
+BuiltinData hemisphereTJunction();
+BuiltinData tjunctionSurrounded();
+BuiltinData tjunctionVertex();
+BuiltinData hullLike();
+
 } // namespace builtin_detail
 } // namespace v1
 } // namespace curvenet

@@ -35,6 +35,15 @@ const std::vector<Entry> &entries() {
        [] { return torusMixed(); }},
       {{"saddle-nodes", "open network on z = x^2 - y^2 with an X-node, a T-node and a 2-sided lens"},
        [] { return saddleNodes(); }},
+      {{"hemisphere-tjunction",
+        "3 cubic Bezier patches on the unit sphere, a T-junction on the boundary curve of the third (paper 003)"},
+       [] { return hemisphereTJunction(); }},
+      {{"tjunction-surrounded", "hemisphere x >= 0 in 6 cubic Bezier patches, the T-junction surrounded by patches"},
+       [] { return tjunctionSurrounded(); }},
+      {{"tjunction-vertex", "3 cubic Bezier patches, one running straight through its corner at a T-junction"},
+       [] { return tjunctionVertex(); }},
+      {{"hull-like", "ship-hull-like side of the ellipsoid (3, 1, 0.8): 10 cubic Bezier patches, 4 T-junctions"},
+       [] { return hullLike(); }},
   };
   return list;
 }

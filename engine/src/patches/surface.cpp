@@ -1,8 +1,10 @@
 // Surface::build — edge data shared by faces, then one patch per face.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "analysis/vertex_frames.hpp"
+#include "bezier/bezier_surface.hpp"
 #include "curvenet/error.hpp"
 #include "curvenet/surface.hpp"
 #include "patches/patch.hpp"
@@ -14,11 +16,17 @@ std::string schemeName(Scheme scheme) {
   switch (scheme) {
   case Scheme::GregoryG1: return "gregory-g1";
   case Scheme::CompositeRibbon: return "composite-ribbon";
+  case Scheme::BezierG1: return "bezier-g1";
+  case Scheme::CoonsC0: return "coons-c0";
   }
   return "?";
 }
 
-std::vector<Scheme> availableSchemes() { return {Scheme::GregoryG1, Scheme::CompositeRibbon}; }
+std::vector<Scheme> availableSchemes() {
+  return {Scheme::GregoryG1, Scheme::CompositeRibbon, Scheme::BezierG1, Scheme::CoonsC0};
+}
+
+bool acceptsAnyLoop(Scheme scheme) { return scheme == Scheme::GregoryG1 || scheme == Scheme::CompositeRibbon; }
 
 std::optional<Scheme> schemeFromName(const std::string &name) {
   for (Scheme s : availableSchemes())
@@ -43,13 +51,35 @@ struct Surface::Impl {
   using DomainSide = DomainSideRange;
   /// Per face: the face side and side-parameter range of each domain side.
   std::vector<std::vector<DomainSide>> domainSides;
+  /// bezier-g1 / coons-c0: the quintic patches (the transfinite members stay empty).
+  std::shared_ptr<const bezier::BezierSurfaceData> bezier;
 };
+
+const bezier::BezierSurfaceData *SurfaceAccess::bezierData(const Surface &surface) {
+  return surface.impl_->bezier.get();
+}
+
+namespace {
+const RegularDomain &squareDomain() {
+  static const RegularDomain domain(4);
+  return domain;
+}
+} // namespace
 
 Surface Surface::build(const Network &network, const SurfaceOptions &options) {
   auto impl = std::make_shared<Impl>();
   impl->network = network;
   impl->options = options;
   impl->frames = computeVertexFrames(network);
+  if (options.scheme == Scheme::BezierG1 || options.scheme == Scheme::CoonsC0) {
+    impl->bezier = std::make_shared<const bezier::BezierSurfaceData>(
+        bezier::buildBezierSurface(network, options.scheme == Scheme::BezierG1));
+    for (size_t f = 0; f < network.faces().size(); ++f)
+      impl->domainSides.push_back({{0, 0.0, 1.0}, {1, 0.0, 1.0}, {2, 0.0, 1.0}, {3, 0.0, 1.0}});
+    Surface surface;
+    surface.impl_ = std::move(impl);
+    return surface;
+  }
   for (const Segment &seg : network.segments())
     impl->fences.push_back(std::make_unique<NormalFence>(seg.curve, impl->frames[seg.start].normal,
                                                          impl->frames[seg.end].normal));
@@ -113,9 +143,15 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
 
 const Network &Surface::network() const { return impl_->network; }
 const SurfaceOptions &Surface::options() const { return impl_->options; }
-int Surface::faceCount() const { return static_cast<int>(impl_->patches.size()); }
-int Surface::domainSides(int face) const { return impl_->patches.at(face).domain().sides(); }
-Vec2 Surface::domainCorner(int face, int corner) const { return impl_->patches.at(face).domain().corner(corner); }
+int Surface::faceCount() const {
+  return static_cast<int>(impl_->bezier ? impl_->bezier->faces.size() : impl_->patches.size());
+}
+int Surface::domainSides(int face) const {
+  return impl_->bezier ? 4 : impl_->patches.at(face).domain().sides();
+}
+Vec2 Surface::domainCorner(int face, int corner) const {
+  return impl_->bezier ? squareDomain().corner(corner) : impl_->patches.at(face).domain().corner(corner);
+}
 
 Surface::DomainSideRange Surface::domainSideRange(int face, int domainSide) const {
   return impl_->domainSides.at(face).at(domainSide);
@@ -126,12 +162,27 @@ Vec2 Surface::domainPointOnFaceSide(int face, int side, double s) const {
   for (size_t i = 0; i < sides.size(); ++i) {
     const auto &ds = sides[i];
     if (ds.faceSide == side && s <= ds.sTo)
-      return impl_->patches[face].domain().pointOnSide(static_cast<int>(i), (s - ds.sFrom) / (ds.sTo - ds.sFrom));
+      return (impl_->bezier ? squareDomain() : impl_->patches[face].domain()).pointOnSide(static_cast<int>(i), (s - ds.sFrom) / (ds.sTo - ds.sFrom));
   }
   throw InputError("", "face " + std::to_string(face), "no side " + std::to_string(side));
 }
 
 SurfacePoint Surface::evaluate(int face, const Vec2 &uv) const {
+  if (impl_->bezier) {
+    // Square domain → (u, v) ∈ [0, 1]² (see the header); d(u,v)/d(x,y) = 1/width.
+    const Vec2 c0 = squareDomain().corner(0);
+    const double width = squareDomain().corner(1).x - c0.x;
+    const double u = std::clamp((uv.x - c0.x) / width, 0.0, 1.0), v = std::clamp((uv.y - c0.y) / width, 0.0, 1.0);
+    const bezier::QuinticPatch::Point p = bezier::evaluateBezierFace(*impl_->bezier, face, u, v);
+    Vec3 normal = cross(p.du, p.dv);
+    // Degenerate only at a straight-angle corner of a Coons patch: the limit from inside.
+    if (squaredNorm(normal) <= 1e-24 * squaredNorm(p.du) * squaredNorm(p.dv) || squaredNorm(normal) == 0) {
+      const auto inside = bezier::evaluateBezierFace(*impl_->bezier, face, 0.5 + (u - 0.5) * (1 - 1e-7),
+                                                     0.5 + (v - 0.5) * (1 - 1e-7));
+      normal = cross(inside.du, inside.dv);
+    }
+    return {p.point, p.du / width, p.dv / width, normalized(normal)};
+  }
   const Patch &patch = impl_->patches.at(face);
   const DualVec3 r = patch.evaluate(uv.x, uv.y);
   Vec3 normal = cross(r.du, r.dv);
