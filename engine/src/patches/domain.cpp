@@ -97,12 +97,18 @@ RegularDomain::SweepParameters RegularDomain::hermiteSweep(int i, Dual u, Dual v
     Vec2 val, slope;
     w(s, val, slope);
     const double d = std::abs(val.x) > std::abs(val.y) ? (px - s) / val.x : py / val.y;
-    if (d >= -1e-9 && d < bestD) bestD = d, best = s;
+    // Ties (several sweeplines through one point, e.g. near the apex of a
+    // triangle) keep the root found first: the end roots, checked first.
+    if (d >= -1e-9 && d < bestD - 1e-12) bestD = d, best = s;
   };
-  if (f0 == 0) consider(0.0);
+  // Points on sides i−1 and i+1 are roots at s = 0 and s = 1 exactly, where
+  // rounding may hide the sign change from the grid below.
+  const double tolerance = 1e-13 * (std::abs(px) + std::abs(py) + 1) * (norm(a) + norm(b));
+  if (std::abs(f0) <= tolerance) consider(0.0);
+  if (std::abs(F(1.0)) <= tolerance) consider(1.0);
   for (int k = 1; k <= kGrid; ++k) {
     const double s1 = double(k) / kGrid, f1 = F(s1);
-    if (f1 == 0) consider(s1);
+    if (f1 == 0 && k < kGrid) consider(s1);
     else if ((f0 < 0) != (f1 < 0) && f0 != 0) {
       double lo = s1 - 1.0 / kGrid, hi = s1, flo = f0;
       for (int it = 0; it < 60; ++it) {
@@ -124,6 +130,48 @@ RegularDomain::SweepParameters RegularDomain::hermiteSweep(int i, Dual u, Dual v
   const Dual wx = s.apply(val.x, slope.x), wy = s.apply(val.y, slope.y);
   const Dual d = std::abs(val.x) > std::abs(val.y) ? (x - s) / wx : y / wy;
   return {s, d};
+}
+
+Dual2 RegularDomain::perpendicularDistance2(int i, Dual2 u, Dual2 v) const {
+  const Vec2 p = corner(i), e = corner(i + 1) - corner(i);
+  const double l2 = dot(e, e);
+  return ((v - p.y) * e.x - (u - p.x) * e.y) * (1.0 / l2);
+}
+
+Dual2 RegularDomain::hermiteSweepSide2(int i, Dual2 u, Dual2 v, bool quintic) const {
+  const Vec2 p = corner(i), e = corner(i + 1) - corner(i);
+  const double l2 = dot(e, e);
+  const Dual2 qx = u - p.x, qy = v - p.y;
+  const Dual2 x = (qx * e.x + qy * e.y) * (1.0 / l2), y = (qy * e.x - qx * e.y) * (1.0 / l2);
+  const Vec2 a = inFrame(e, corner(i - 1) - corner(i));
+  const Vec2 b = inFrame(e, corner(i + 2) - corner(i + 1));
+  const double s0 = hermiteSweep(i, Dual(u.v), Dual(v.v), quintic).s.v;
+  auto H = [quintic](double s) -> std::array<double, 3> {
+    if (quintic)
+      return {1 - s * s * s * (10 - 15 * s + 6 * s * s), -30 * s * s * (1 - s) * (1 - s),
+              -60 * s * (1 - s) * (1 - 2 * s)};
+    return {2 * s * s * s - 3 * s * s + 1, 6 * s * s - 6 * s, 12 * s - 6};
+  };
+  // F(s) = (x − s) w_y(s) − y w_x(s) with w = a H(s) + b H(1 − s), in jets.
+  auto F = [&](Dual2 s) {
+    const auto h0 = H(s.v), h1 = H(1 - s.v);
+    const Dual2 hs = s.apply(h0[0], h0[1], h0[2]);
+    const Dual2 hr = s.apply(h1[0], -h1[1], h1[2]); // H(1 − s) as a function of s
+    const Dual2 wx = hs * a.x + hr * b.x, wy = hs * a.y + hr * b.y;
+    return (x - s) * wy - y * wx;
+  };
+  const auto h0 = H(s0), h1 = H(1 - s0);
+  const Vec2 val = a * h0[0] + b * h1[0], slope = a * h0[1] - b * h1[1];
+  const double Fs = -val.y + (x.v - s0) * slope.y - y.v * slope.x;
+  Dual2 s = s0;
+  if (Fs == 0) return s;
+  // Newton with the derivative frozen at the root: each step gains one order.
+  for (int k = 0; k < 2; ++k) {
+    Dual2 r = F(s);
+    r.v = 0; // the value is the root already; keep it exact
+    s = s - r * (1.0 / Fs);
+  }
+  return s;
 }
 
 Dual RegularDomain::linearSweepSideParameter(int i, Dual u, Dual v) const {
