@@ -100,21 +100,20 @@ TEST_P(EveryBuiltin, NormalCurvatureAlongSidesMatchesTheCurves) {
         const auto d = net.faces()[f].sides[k].curve.derivatives(t);
         const Vec3 n = s.evaluate(f, uv).normal;
         const double expected = dot(d[2], n) / squaredNorm(d[1]);
-        const CurvatureSample c = surfaceCurvature(s, f, uv);
+        const CurvatureSample c = surfaceCurvature(s, f, uv, {2.5e-4});
         scale = std::max(scale, std::abs(expected));
         worst = std::max(worst, std::abs(c.normalCurvature(d[1]) - expected));
       }
   // Boundary values converge at first order in h (measured: the error halves
-  // with h; the patches' second derivatives vary fastest next to their sides).
-  EXPECT_LT(worst / scale, 5e-3);
+  // with h; the patches' second derivatives vary fastest next to their sides),
+  // hence the step of 2.5e-4 here and the loose bound; a wrong estimator is
+  // off by O(1).
+  EXPECT_LT(worst / scale, 1e-2);
 }
 
-// torus-mixed is left out: its 3-sided Gregory patches do not yet interpolate
-// their sides (off by up to 0.12 at resolution 6) and are undefined at their
-// centres, so there is no patch curvature to check there yet.
 INSTANTIATE_TEST_SUITE_P(Curvature, EveryBuiltin,
                          ::testing::Values("pentagon", "sphere-dodecahedron", "ellipsoid-truncated-icosahedron",
-                                           "saddle-nodes"),
+                                           "torus-mixed", "saddle-nodes"),
                          [](const ::testing::TestParamInfo<std::string> &param) {
                            std::string n = param.param;
                            for (char &c : n)
@@ -136,7 +135,7 @@ TEST(Curvature, SphereNetworkHasTheSpheresCurvatureAlongItsEdges) {
         const SurfacePoint p = s.evaluate(f, uv);
         ASSERT_NEAR(norm(p.point), 1.0, 1e-6) << "face " << f << " side " << k;
         ASSERT_GT(dot(p.normal, p.point), 0.999) << "face " << f << " normal is not outward";
-        const CurvatureSample c = surfaceCurvature(s, f, uv);
+        const CurvatureSample c = surfaceCurvature(s, f, uv, {2.5e-4});
         EXPECT_NEAR(c.normalCurvature(net.faces()[f].sides[k].curve.derivatives(t)[1]), -1.0, 1e-3)
             << "face " << f << " side " << k << " t " << t;
       }

@@ -10,6 +10,13 @@
 //    linear ribbons): corner interpolants I = R_{i−1} + R_i − Q with the
 //    rational-twist correction patch Q of DESIGN.md §3; sweeplines radial
 //    [CG84] or Hermite (eq. 20).
+//  * gregory-g2 — the G² Gregory patch of paper 000 Sec. 4: parabolic ribbons
+//    R = P + dT + ½d²C (eq. 15) over curvature-compatible normal fences
+//    (eqs. 13–14), corner interpolants (eq. 17), blends with m = 3, the
+//    Hermite sweepline (eq. 20, cubic or quintic) and the nine-term rational
+//    correction patch (eq. 22, DESIGN.md §3). Adjacent patches share the
+//    normal fence and the transversal curvature of every edge, so they are
+//    curvature continuous along it (Linkage Curve Theorem, App. B).
 //  * composite-ribbon — the CR patch of paper 002: γ(d) = d/(2d+1) ribbons,
 //    curved ribbons (Coons patches with three sides given), Wachspress
 //    distance parameters, linear-sweep side parameters, S = ½ Σ C_i B_i. Where
@@ -39,9 +46,12 @@
 // normal fence. A T-node seen from the face with the straight angle is one
 // side of that face (see network.hpp).
 //
+// Normals and curvature along the edges: see FenceNormals and EdgeCurvature.
+//
 // Threads: a built Surface is immutable; evaluate() may be called from any
 // number of threads at once. Cost: build is linear in the number of segments
-// (fence construction dominates); evaluate is O(n) ribbon evaluations
+// (fence construction dominates; gregory-g2 with MasterSlave or Averaging also
+// builds and samples the G¹ surface); evaluate is O(n) ribbon evaluations
 // (Gregory) or O(3n) (composite ribbon) and allocates nothing.
 #pragma once
 
@@ -51,14 +61,67 @@
 #include <vector>
 
 #include "curvenet/network.hpp"
+#include "curvenet/vertex_math.hpp"
 
 namespace curvenet {
 inline namespace v1 {
 
-enum class Scheme { GregoryG1, CompositeRibbon, BezierG1, CoonsC0 };
-enum class Sweepline { Radial, Hermite };
+enum class Scheme { GregoryG1, CompositeRibbon, GregoryG2, BezierG1, CoonsC0 };
 
-/// "gregory-g1", "composite-ribbon", "bezier-g1", "coons-c0"; and back (std::nullopt for unknown names).
+/// Side parameterization of the Gregory schemes. Radial [CG84] suits G¹
+/// only; Hermite is eq. 20 with H(s) = 2s³ − 3s² + 1 (G²: the two
+/// parameterizations of a ribbon agree to first order on its side);
+/// QuinticHermite uses 1 − 10s³ + 15s⁴ − 6s⁵ (footnote of Sec. 4.3: also to
+/// second order, C² reproduction of the ribbons). Auto is Radial for
+/// gregory-g1 and Hermite for gregory-g2.
+///
+/// On a 3-sided face the Hermite sweeplines of a side cannot all reach the
+/// opposite corner: with the constant parametric speed along the two other
+/// sides that eq. 19 demands, they cross beyond 2/3 of the way there (on the
+/// bisector). The sweep then takes the orientation-preserving root nearest
+/// the radial parameter, which leaves a fold along that bisector near the
+/// corner, where the interpolants using this sweep have little weight. This
+/// is why gregory-g1 defaults to the radial sweep, which covers every n-gon
+/// one-to-one.
+enum class Sweepline { Auto, Radial, Hermite, QuinticHermite };
+
+/// Where the normal fences (the shared normals along every edge) come from.
+enum class FenceNormals {
+  /// Reference when the network carries a reference surface, Curves otherwise.
+  Auto,
+  /// From the curves alone: rotation-minimizing between the vertex tangent
+  /// planes (G¹ schemes) or curvature-compatible at both ends (gregory-g2).
+  Curves,
+  /// From the network's reference surface (paper 000 Sec. 5.3, mesh
+  /// approximation): normals sampled along each segment, vertex normals too.
+  /// InputError when the network has no reference.
+  Reference,
+};
+
+/// How gregory-g2 chooses the transversal curvature κ_D(s) of each edge (the
+/// normal curvature in the common direction N × P', paper 000 Sec. 3.3).
+/// Every source keeps κ in the curve's own direction equal to the curve's
+/// normal curvature (constraint κ(ω0) = k0) and uses the vertex tensors at the
+/// segment ends.
+enum class EdgeCurvature {
+  /// The G¹ patch of the edge's first face (Segment::faces[0]) is the master:
+  /// its curvature tensor along the edge, measured in five directions and
+  /// fitted with the constraint, is imposed on the other face.
+  MasterSlave,
+  /// Sec. 3.3 (ii): both adjacent G¹ patches are measured in five directions,
+  /// the measurements averaged and fitted with the constraint.
+  Averaging,
+  /// The two end-vertex tensors, expressed in the fence frame (t, N × t) at
+  /// each end, blended linearly in arc length and fitted with the
+  /// constraint. Needs no G¹ patches: the cheapest, and the default.
+  Direct,
+  /// The reference surface's normal curvature (built-ins: analytic); vertex
+  /// tensors from it too. InputError when the network has no reference.
+  Reference,
+};
+
+/// "gregory-g1", "composite-ribbon", "gregory-g2", "bezier-g1", "coons-c0"; and back
+/// (std::nullopt for unknown names).
 std::string schemeName(Scheme scheme);
 std::optional<Scheme> schemeFromName(const std::string &name);
 /// Every scheme this build provides, in a fixed order.
@@ -67,10 +130,15 @@ std::vector<Scheme> availableSchemes();
 /// curves; false for the schemes limited to 4-sided Bézier networks
 /// (bezier-g1, coons-c0).
 bool acceptsAnyLoop(Scheme scheme);
+/// "master-slave", "averaging", "direct", "reference"; and back.
+std::string edgeCurvatureName(EdgeCurvature source);
+std::optional<EdgeCurvature> edgeCurvatureFromName(const std::string &name);
 
 struct SurfaceOptions {
   Scheme scheme = Scheme::GregoryG1;
-  Sweepline sweepline = Sweepline::Hermite; ///< gregory-g1 only
+  Sweepline sweepline = Sweepline::Auto;              ///< Gregory schemes; gregory-g2 refuses Radial
+  FenceNormals fenceNormals = FenceNormals::Auto;     ///< every scheme
+  EdgeCurvature edgeCurvature = EdgeCurvature::Direct; ///< gregory-g2 only
 };
 
 /// A surface point with its exact first derivatives in domain coordinates
@@ -78,6 +146,26 @@ struct SurfaceOptions {
 /// derivatives are parallel — straight-angle corners — the limit from inside).
 struct SurfacePoint {
   Vec3 point, du, dv, normal;
+};
+
+/// A surface point with second derivatives in domain coordinates too.
+struct SurfacePoint2 : SurfacePoint {
+  Vec3 duu, duv, dvv;
+  /// Normal curvature (sign: positive when bending towards `normal`) in the
+  /// tangent direction closest to `direction` (any 3D vector not along the
+  /// normal): II(X, X) / |X|² for X = a du + b dv the least-squares fit.
+  double normalCurvature(const Vec3 &direction) const;
+};
+
+/// Which vertex curvature the surface uses and how it was fitted.
+struct VertexCurvatureInfo {
+  /// (κ1, κ2, λ) with λ from `xAxis` towards normal × xAxis; signed with
+  /// respect to Surface::vertexNormal.
+  CurvatureTensor tensor;
+  Vec3 xAxis; ///< the first curve's outgoing tangent projected into the tangent plane
+  FitBranch branch = FitBranch::Exact;
+  int independentDirections = 0;
+  double maxResidual = 0; ///< 1/length: largest misfit of a curve's normal curvature
 };
 
 class Surface {
@@ -106,13 +194,42 @@ public:
   /// side parameter s ∈ [0, 1].
   Vec2 domainPointOnFaceSide(int face, int side, double s) const;
 
+  /// The domain point where face `face` shows segment `segment` at segment
+  /// parameter u ∈ [0, 1]. InputError when the face does not use the segment.
+  Vec2 domainPointOnSegment(int face, int segment, double u) const;
+
   /// Evaluates face `face` at domain point uv (inside or on its polygon).
   SurfacePoint evaluate(int face, const Vec2 &uv) const;
+
+  /// Evaluates with second derivatives. gregory-g2: exact, by hyper-dual
+  /// numbers through the whole formula (sweepline roots by implicit
+  /// differentiation; only the ribbons' C'' is a fourth-order difference of the
+  /// exact C', which matters away from the boundary only); `step` is ignored.
+  /// Other schemes: the exact first derivatives are differenced along two
+  /// orthogonal domain directions with fourth-order stencils of step `step`
+  /// (domain units; circumradius 1): central (±h, ±2h) where the stencil stays
+  /// in the domain, one-sided (0, h, …, 4h) into it otherwise — near a side,
+  /// along it and along its inward normal. Truncation O(step⁴), rounding
+  /// O(ε/step); Gregory corners make the second derivatives vary on a scale
+  /// ~t² (t the distance to the corner), so keep step well below that.
+  /// Costs 9 evaluations. step ∈ [1e-8, 1e-2].
+  SurfacePoint2 evaluateSecondOrder(int face, const Vec2 &uv, double step = 1e-5) const;
 
   /// The tangent-plane normal at network vertex v and how far (radians) the
   /// curve tangents there leave that plane.
   Vec3 vertexNormal(int vertex) const;
   double vertexResidualAngle(int vertex) const;
+
+  /// The curvature fitted at vertex v from its curves (paper 000 Sec. 2,
+  /// App. A; computed for every scheme), or for gregory-g2 with the
+  /// reference edge curvature the reference surface's tensor.
+  VertexCurvatureInfo vertexCurvature(int vertex) const;
+
+  /// gregory-g2: the transversal curvature κ_D of segment `segment` at u ∈
+  /// [0, 1] (normal curvature in direction N × P'); NaN for other schemes.
+  double transversalCurvature(int segment, double u) const;
+  /// The shared fence normal of segment `segment` at u ∈ [0, 1].
+  Vec3 fenceNormal(int segment, double u) const;
 
   struct Impl;
 

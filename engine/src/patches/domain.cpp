@@ -92,8 +92,8 @@ RegularDomain::SweepParameters RegularDomain::hermiteSweep(int i, Dual u, Dual v
   // (robust; the cached evaluation plans do this once per sample anyway).
   constexpr int kGrid = 64;
   // In a triangle the sweeplines of side i cross near the opposite corner
-  // (the cubic blend of a and b does not aim every line at it), so a point
-  // there lies on two sweeplines. Of the roots with d ≥ 0 take the one
+  // (see Sweepline in curvenet/surface.hpp), so a point there lies on several
+  // sweeplines. Of the orientation-preserving roots with d ≥ 0 take the one
   // nearest the radial parameter, the sweep this one perturbs; elsewhere the
   // root is unique and the rule changes nothing.
   const double radial = radialSideParameter(i, Dual(u.v), Dual(v.v)).v;
@@ -102,7 +102,11 @@ RegularDomain::SweepParameters RegularDomain::hermiteSweep(int i, Dual u, Dual v
     Vec2 val, slope;
     w(s, val, slope);
     const double d = std::abs(val.x) > std::abs(val.y) ? (px - s) / val.x : py / val.y;
-    if (d >= -1e-9 && std::abs(s - radial) < bestDistance) bestDistance = std::abs(s - radial), best = s;
+    // Orientation of (s, d) ↦ (x, y) = (s, 0) + d w(s): beyond a fold the
+    // root lies on the reversed sheet, which no valid sweep passes through.
+    const double jacobian = (1 + d * slope.x) * val.y - d * slope.y * val.x;
+    const double penalty = jacobian > 1e-9 ? 0.0 : 2.0; // reversed or folded: only if nothing else
+    if (d >= -1e-9 && std::abs(s - radial) + penalty < bestDistance) bestDistance = std::abs(s - radial) + penalty, best = s;
   };
   double f0 = F(0.0);
   // A point on side i−1 or i+1 has its root exactly at an end of [0, 1],
@@ -113,7 +117,7 @@ RegularDomain::SweepParameters RegularDomain::hermiteSweep(int i, Dual u, Dual v
   if (std::abs(F(1.0)) <= tolerance) consider(1.0);
   for (int k = 1; k <= kGrid; ++k) {
     const double s1 = double(k) / kGrid, f1 = F(s1);
-    if (f1 == 0) consider(s1);
+    if (f1 == 0 && k < kGrid) consider(s1);
     else if ((f0 < 0) != (f1 < 0) && f0 != 0) {
       double lo = s1 - 1.0 / kGrid, hi = s1, flo = f0;
       for (int it = 0; it < 60; ++it) {
@@ -135,6 +139,48 @@ RegularDomain::SweepParameters RegularDomain::hermiteSweep(int i, Dual u, Dual v
   const Dual wx = s.apply(val.x, slope.x), wy = s.apply(val.y, slope.y);
   const Dual d = std::abs(val.x) > std::abs(val.y) ? (x - s) / wx : y / wy;
   return {s, d};
+}
+
+Dual2 RegularDomain::perpendicularDistance2(int i, Dual2 u, Dual2 v) const {
+  const Vec2 p = corner(i), e = corner(i + 1) - corner(i);
+  const double l2 = dot(e, e);
+  return ((v - p.y) * e.x - (u - p.x) * e.y) * (1.0 / l2);
+}
+
+Dual2 RegularDomain::hermiteSweepSide2(int i, Dual2 u, Dual2 v, bool quintic) const {
+  const Vec2 p = corner(i), e = corner(i + 1) - corner(i);
+  const double l2 = dot(e, e);
+  const Dual2 qx = u - p.x, qy = v - p.y;
+  const Dual2 x = (qx * e.x + qy * e.y) * (1.0 / l2), y = (qy * e.x - qx * e.y) * (1.0 / l2);
+  const Vec2 a = inFrame(e, corner(i - 1) - corner(i));
+  const Vec2 b = inFrame(e, corner(i + 2) - corner(i + 1));
+  const double s0 = hermiteSweep(i, Dual(u.v), Dual(v.v), quintic).s.v;
+  auto H = [quintic](double s) -> std::array<double, 3> {
+    if (quintic)
+      return {1 - s * s * s * (10 - 15 * s + 6 * s * s), -30 * s * s * (1 - s) * (1 - s),
+              -60 * s * (1 - s) * (1 - 2 * s)};
+    return {2 * s * s * s - 3 * s * s + 1, 6 * s * s - 6 * s, 12 * s - 6};
+  };
+  // F(s) = (x − s) w_y(s) − y w_x(s) with w = a H(s) + b H(1 − s), in jets.
+  auto F = [&](Dual2 s) {
+    const auto h0 = H(s.v), h1 = H(1 - s.v);
+    const Dual2 hs = s.apply(h0[0], h0[1], h0[2]);
+    const Dual2 hr = s.apply(h1[0], -h1[1], h1[2]); // H(1 − s) as a function of s
+    const Dual2 wx = hs * a.x + hr * b.x, wy = hs * a.y + hr * b.y;
+    return (x - s) * wy - y * wx;
+  };
+  const auto h0 = H(s0), h1 = H(1 - s0);
+  const Vec2 val = a * h0[0] + b * h1[0], slope = a * h0[1] - b * h1[1];
+  const double Fs = -val.y + (x.v - s0) * slope.y - y.v * slope.x;
+  Dual2 s = s0;
+  if (Fs == 0) return s;
+  // Newton with the derivative frozen at the root: each step gains one order.
+  for (int k = 0; k < 2; ++k) {
+    Dual2 r = F(s);
+    r.v = 0; // the value is the root already; keep it exact
+    s = s - r * (1.0 / Fs);
+  }
+  return s;
 }
 
 Dual RegularDomain::linearSweepSideParameter(int i, Dual u, Dual v) const {

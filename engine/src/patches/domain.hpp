@@ -39,6 +39,12 @@ public:
     Dual s, d;
   };
   SweepParameters hermiteSweep(int i, Dual u, Dual v, bool quintic = false) const;
+  /// s_i of the Hermite sweepline with exact second derivatives: the root of
+  /// hermiteSweep refined by two Newton steps in hyper-dual arithmetic (the
+  /// first fixes the first derivatives, the second the second derivatives).
+  Dual2 hermiteSweepSide2(int i, Dual2 u, Dual2 v, bool quintic = false) const;
+  /// perpendicularDistance with second derivatives (it is affine).
+  Dual2 perpendicularDistance2(int i, Dual2 u, Dual2 v) const;
 
   /// Linear sweep (paper 002 Sec. 2.3): the isoline of s_i is the straight
   /// line from the point at fraction s on side i to the point at fraction s

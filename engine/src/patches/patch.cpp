@@ -26,7 +26,64 @@ DualVec3 rationalTerm(const Vec3 &a, const Vec3 &b, Dual x, Dual y) {
   return (x / sum) * a + (y / sum) * b;
 }
 
+/// Parabolic ribbon R(s, d) = P(s) + d T(s) + ½ d² C(s) at Dual parameters.
+DualVec3 ribbonAt(const ParabolicJet &j, Dual s, Dual d) {
+  return DualVec3::along(j.P, j.dP, s) + d * DualVec3::along(j.T, j.dT, s) +
+         (Dual(0.5) * d * d) * DualVec3::along(j.C, j.dC, s);
+}
+
+Dual2Vec3 rationalTerm2(const Vec3 &a, const Vec3 &b, Dual2 x, Dual2 y) {
+  const Dual2 sum = x + y;
+  if (sum.v == 0) return Dual2Vec3::constant((a + b) * 0.5);
+  return (x / sum) * a + (y / sum) * b;
+}
+
+Dual2Vec3 ribbonAt2(const SideEndData &j, Dual2 s, Dual2 d) {
+  return Dual2Vec3::along(j.P, j.dP, j.ddP, s) + d * Dual2Vec3::along(j.T, j.dT, j.ddT, s) +
+         (Dual2(0.5) * d * d) * Dual2Vec3::along(j.C, j.dC, j.ddC, s);
+}
+
+/// gregoryCorrection2 in hyper-dual arithmetic.
+Dual2Vec3 gregoryCorrection2Second(const CornerData2 &c, Dual2 s, Dual2 t) {
+  const Dual2 sp[4] = {1.0, s, s * s, s * s * s}, tp[4] = {1.0, t, t * t, t * t * t};
+  constexpr double inverseFactorial[3] = {1.0, 1.0, 0.5};
+  Dual2Vec3 q = Dual2Vec3::constant(c.a[0][0]);
+  for (int p = 0; p <= 2; ++p)
+    for (int r = 0; r <= 2; ++r) {
+      if (p == 0 && r == 0) continue;
+      const Dual2 weight = sp[p] * tp[r] * Dual2(inverseFactorial[p] * inverseFactorial[r]);
+      q += weight * rationalTerm2(c.a[p][r], c.b[p][r], sp[3 - p], tp[3 - r]);
+    }
+  return q;
+}
+
+CornerData2 cornerData2(const SideEndData &end, const SideEndData &start) {
+  // a from R_{i-1}(1 - t, s): d/ds -> d/dd, d/dt -> -d/dsigma; b from R_i(s, t).
+  CornerData2 corner;
+  corner.a[0][0] = start.P;
+  corner.a[1][0] = end.T, corner.a[2][0] = end.C;
+  corner.a[0][1] = -end.dP, corner.a[1][1] = -end.dT, corner.a[2][1] = -end.dC;
+  corner.a[0][2] = end.ddP, corner.a[1][2] = end.ddT, corner.a[2][2] = end.ddC;
+  corner.b[1][0] = start.dP, corner.b[2][0] = start.ddP;
+  corner.b[0][1] = start.T, corner.b[1][1] = start.dT, corner.b[2][1] = start.ddT;
+  corner.b[0][2] = start.C, corner.b[1][2] = start.dC, corner.b[2][2] = start.ddC;
+  return corner;
+}
+
 } // namespace
+
+DualVec3 gregoryCorrection2(const CornerData2 &c, Dual s, Dual t) {
+  const Dual sp[4] = {1.0, s, s * s, s * s * s}, tp[4] = {1.0, t, t * t, t * t * t};
+  constexpr double inverseFactorial[3] = {1.0, 1.0, 0.5};
+  DualVec3 q = DualVec3::constant(c.a[0][0]);
+  for (int p = 0; p <= 2; ++p)
+    for (int r = 0; r <= 2; ++r) {
+      if (p == 0 && r == 0) continue;
+      const Dual weight = sp[p] * tp[r] * Dual(inverseFactorial[p] * inverseFactorial[r]);
+      q += weight * rationalTerm(c.a[p][r], c.b[p][r], sp[3 - p], tp[3 - r]);
+    }
+  return q;
+}
 
 DualVec3 gregoryCorrection(const CornerData &c, Dual s, Dual t, Dual gs, Dual gt) {
   const Dual s2 = s * s, t2 = t * t;
@@ -37,9 +94,14 @@ DualVec3 gregoryCorrection(const CornerData &c, Dual s, Dual t, Dual gs, Dual gt
   return q;
 }
 
-Patch::Patch(std::vector<LinearRibbon> ribbons, const SurfaceOptions &options)
-    : domain_(static_cast<int>(ribbons.size())), ribbons_(std::move(ribbons)), options_(options) {
+Patch::Patch(std::vector<LinearRibbon> ribbons, const SurfaceOptions &options, std::vector<ParabolicRibbon> parabolic)
+    : domain_(static_cast<int>(ribbons.size())), ribbons_(std::move(ribbons)), parabolic_(std::move(parabolic)),
+      options_(options) {
   CURVENET_CHECK(ribbons_.size() >= 3 && ribbons_.size() <= kMaxSides);
+  if (options_.sweepline == Sweepline::Auto)
+    options_.sweepline = options_.scheme == Scheme::GregoryG2 ? Sweepline::Hermite : Sweepline::Radial;
+  CURVENET_CHECK(options_.scheme != Scheme::GregoryG2 || parabolic_.size() == ribbons_.size(),
+                 "gregory-g2 needs one parabolic ribbon per side");
 }
 
 DualVec3 Patch::evaluate(double u, double v) const {
@@ -53,7 +115,12 @@ DualVec3 Patch::evaluate(double u, double v) const {
     if (std::abs(u - c.x) <= 1e-14 && std::abs(v - c.y) <= 1e-14) u = c.x, v = c.y;
   }
   const Dual du = Dual::u(u), dv = Dual::vCoord(v);
-  return options_.scheme == Scheme::CompositeRibbon ? compositeRibbon(du, dv) : gregory(du, dv);
+  switch (options_.scheme) {
+  case Scheme::CompositeRibbon: return compositeRibbon(du, dv);
+  case Scheme::GregoryG2: return gregoryG2(du, dv);
+  case Scheme::GregoryG1: break;
+  }
+  return gregory(du, dv);
 }
 
 // Gregory corner-based patch, paper 000 eqs. 16–18 with m = 2.
@@ -62,8 +129,9 @@ DualVec3 Patch::gregory(Dual u, Dual v) const {
   std::array<Dual, kMaxSides> s, distance;
   std::array<RibbonJet, kMaxSides> jet;
   for (int i = 0; i < n; ++i) {
-    s[i] = options_.sweepline == Sweepline::Radial ? domain_.radialSideParameter(i, u, v)
-                                                   : domain_.hermiteSweep(i, u, v).s;
+    s[i] = options_.sweepline == Sweepline::Radial
+               ? domain_.radialSideParameter(i, u, v)
+               : domain_.hermiteSweep(i, u, v, options_.sweepline == Sweepline::QuinticHermite).s;
     distance[i] = domain_.perpendicularDistance(i, u, v);
     jet[i] = ribbons_[i].at(std::clamp(s[i].v, 0.0, 1.0));
   }
@@ -92,6 +160,85 @@ DualVec3 Patch::gregory(Dual u, Dual v) const {
                             start.dP, start.T, start.dT};       // from R_i(s, t): matched across s = 0
     const DualVec3 interpolant = ribbonAt(left, s[prev], si) + ribbonAt(right, si, ti) -
                                  gregoryCorrection(corner, si, ti, si, ti);
+    result += b * interpolant;
+  }
+  return result;
+}
+
+// The G² Gregory patch in hyper-dual arithmetic: the same formula as
+// gregoryG2, with exact second derivatives of every constituent (C'' of the
+// ribbons excepted, see ParabolicRibbon::secondOrder).
+Dual2Vec3 Patch::evaluateSecondOrder(double uValue, double vValue) const {
+  CURVENET_CHECK(options_.scheme == Scheme::GregoryG2, "second-order evaluation is gregory-g2 only");
+  const Dual2 u = Dual2::u(uValue), v = Dual2::vCoord(vValue);
+  const int n = domain_.sides();
+  const bool quintic = options_.sweepline == Sweepline::QuinticHermite;
+  std::array<Dual2, kMaxSides> s, cubed;
+  std::array<SideEndData, kMaxSides> jet;
+  for (int i = 0; i < n; ++i) {
+    s[i] = domain_.hermiteSweepSide2(i, u, v, quintic);
+    const Dual2 distance = domain_.perpendicularDistance2(i, u, v);
+    cubed[i] = distance * distance * distance;
+    const double side = std::clamp(s[i].v, 0.0, 1.0);
+    jet[i] = side == 0.0 ? parabolic_[i].start() : side == 1.0 ? parabolic_[i].end() : parabolic_[i].secondOrder(side);
+  }
+  std::array<Dual2, kMaxSides> blend;
+  Dual2 total = 0.0;
+  for (int i = 0; i < n; ++i) {
+    Dual2 product = 1.0;
+    for (int j = 0; j < n; ++j)
+      if (j != i && j != domain_.wrap(i - 1)) product *= cubed[j];
+    blend[i] = product;
+    total += product;
+  }
+  Dual2Vec3 result{};
+  for (int i = 0; i < n; ++i) {
+    const Dual2 b = blend[i] / total;
+    if (b.isZero()) continue;
+    const int prev = domain_.wrap(i - 1);
+    const Dual2 si = s[i], ti = Dual2(1.0) - s[prev];
+    const CornerData2 corner = cornerData2(parabolic_[prev].end(), parabolic_[i].start());
+    const Dual2Vec3 interpolant =
+        ribbonAt2(jet[prev], s[prev], si) + ribbonAt2(jet[i], si, ti) - gregoryCorrection2Second(corner, si, ti);
+    result += b * interpolant;
+  }
+  return result;
+}
+
+// G² Gregory patch, paper 000 eqs. 16–18 with m = 3, parabolic ribbons, the
+// Hermite sweepline (eq. 20) and the nine-term correction patch (eq. 22).
+DualVec3 Patch::gregoryG2(Dual u, Dual v) const {
+  const int n = domain_.sides();
+  const bool quintic = options_.sweepline == Sweepline::QuinticHermite;
+  std::array<Dual, kMaxSides> s, cubed;
+  std::array<ParabolicJet, kMaxSides> jet;
+  for (int i = 0; i < n; ++i) {
+    s[i] = domain_.hermiteSweep(i, u, v, quintic).s;
+    const Dual distance = domain_.perpendicularDistance(i, u, v);
+    cubed[i] = distance * distance * distance;
+    jet[i] = parabolic_[i].at(std::clamp(s[i].v, 0.0, 1.0));
+  }
+  // Corner blends in product form with m = 3 (eq. 18): their first and second
+  // derivatives vanish on every side but the two at the corner.
+  std::array<Dual, kMaxSides> blend;
+  Dual total = 0.0;
+  for (int i = 0; i < n; ++i) {
+    Dual product = 1.0;
+    for (int j = 0; j < n; ++j)
+      if (j != i && j != domain_.wrap(i - 1)) product *= cubed[j];
+    blend[i] = product;
+    total += product;
+  }
+  DualVec3 result{};
+  for (int i = 0; i < n; ++i) {
+    const Dual b = blend[i] / total;
+    if (b.isZero()) continue; // far corner: the interpolant may be undefined there
+    const int prev = domain_.wrap(i - 1);
+    const Dual si = s[i], ti = Dual(1.0) - s[prev];
+    const CornerData2 corner = cornerData2(parabolic_[prev].end(), parabolic_[i].start());
+    // I_{i,i−1} = R_{i−1}(s_{i−1}, s_i) + R_i(s_i, 1 − s_{i−1}) − Q (eq. 17).
+    const DualVec3 interpolant =
+        ribbonAt(jet[prev], s[prev], si) + ribbonAt(jet[i], si, ti) - gregoryCorrection2(corner, si, ti);
     result += b * interpolant;
   }
   return result;

@@ -13,20 +13,27 @@ inline namespace v1 {
 
 class Patch {
 public:
-  Patch(std::vector<LinearRibbon> ribbons, const SurfaceOptions &options);
+  /// `parabolic` (one per side, over the same linear ribbons) is required by
+  /// gregory-g2 and ignored by the other schemes.
+  Patch(std::vector<LinearRibbon> ribbons, const SurfaceOptions &options,
+        std::vector<ParabolicRibbon> parabolic = {});
 
   const RegularDomain &domain() const { return domain_; }
   const LinearRibbon &ribbon(int side) const { return ribbons_[domain_.wrap(side)]; }
 
   /// Surface point with exact ∂/∂u, ∂/∂v at domain point (u, v).
   DualVec3 evaluate(double u, double v) const;
+  /// gregory-g2 only: with second derivatives too (hyper-dual evaluation).
+  Dual2Vec3 evaluateSecondOrder(double u, double v) const;
 
 private:
   DualVec3 gregory(Dual u, Dual v) const;
   DualVec3 compositeRibbon(Dual u, Dual v) const;
+  DualVec3 gregoryG2(Dual u, Dual v) const;
 
   RegularDomain domain_;
   std::vector<LinearRibbon> ribbons_;
+  std::vector<ParabolicRibbon> parabolic_;
   SurfaceOptions options_;
 };
 
@@ -44,6 +51,20 @@ struct CornerData {
 /// the (possibly reparameterized) coordinates multiplying the terms. Every
 /// term carries s^p t^q, so at the corner itself it is the corner point.
 DualVec3 gregoryCorrection(const CornerData &c, Dual s, Dual t, Dual gs, Dual gt);
+
+/// Corner data of two parabolic ribbons for the G² correction patch:
+/// a[p][q] = ∂_s^p ∂_t^q R_{i−1}(1 − t, s), b[p][q] = ∂_s^p ∂_t^q R_i(s, t)
+/// at (0, 0), p, q ∈ {0, 1, 2} (DESIGN.md §3).
+struct CornerData2 {
+  Vec3 a[3][3], b[3][3];
+};
+
+/// The nine-term correction patch of paper 000 eq. 22:
+/// Q = Σ_{p,q ≤ 2} s^p t^q / (p! q!) W_pq with
+/// W_pq = (s^{3−p} a_pq + t^{3−q} b_pq) / (s^{3−p} + t^{3−q}); W_00 = a_00.
+/// Q − R_{i−1}(1 − t, s) = O(t³) and Q − R_i(s, t) = O(s³) whatever the
+/// incompatibility of the two ribbons' corner derivatives.
+DualVec3 gregoryCorrection2(const CornerData2 &c, Dual s, Dual t);
 
 } // namespace v1
 } // namespace curvenet

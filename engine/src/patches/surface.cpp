@@ -1,8 +1,11 @@
 // Surface::build — edge data shared by faces, then one patch per face.
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
+#include "analysis/vertex_curvature.hpp"
 #include "analysis/vertex_frames.hpp"
 #include "bezier/bezier_surface.hpp"
 #include "curvenet/error.hpp"
@@ -16,6 +19,7 @@ std::string schemeName(Scheme scheme) {
   switch (scheme) {
   case Scheme::GregoryG1: return "gregory-g1";
   case Scheme::CompositeRibbon: return "composite-ribbon";
+  case Scheme::GregoryG2: return "gregory-g2";
   case Scheme::BezierG1: return "bezier-g1";
   case Scheme::CoonsC0: return "coons-c0";
   }
@@ -23,15 +27,43 @@ std::string schemeName(Scheme scheme) {
 }
 
 std::vector<Scheme> availableSchemes() {
-  return {Scheme::GregoryG1, Scheme::CompositeRibbon, Scheme::BezierG1, Scheme::CoonsC0};
+  return {Scheme::GregoryG1, Scheme::CompositeRibbon, Scheme::GregoryG2, Scheme::BezierG1, Scheme::CoonsC0};
 }
 
-bool acceptsAnyLoop(Scheme scheme) { return scheme == Scheme::GregoryG1 || scheme == Scheme::CompositeRibbon; }
+bool acceptsAnyLoop(Scheme scheme) { return scheme != Scheme::BezierG1 && scheme != Scheme::CoonsC0; }
 
 std::optional<Scheme> schemeFromName(const std::string &name) {
   for (Scheme s : availableSchemes())
     if (schemeName(s) == name) return s;
   return std::nullopt;
+}
+
+std::string edgeCurvatureName(EdgeCurvature source) {
+  switch (source) {
+  case EdgeCurvature::MasterSlave: return "master-slave";
+  case EdgeCurvature::Averaging: return "averaging";
+  case EdgeCurvature::Direct: return "direct";
+  case EdgeCurvature::Reference: return "reference";
+  }
+  return "?";
+}
+
+std::optional<EdgeCurvature> edgeCurvatureFromName(const std::string &name) {
+  for (EdgeCurvature s :
+       {EdgeCurvature::MasterSlave, EdgeCurvature::Averaging, EdgeCurvature::Direct, EdgeCurvature::Reference})
+    if (edgeCurvatureName(s) == name) return s;
+  return std::nullopt;
+}
+
+double SurfacePoint2::normalCurvature(const Vec3 &direction) const {
+  // Least-squares domain direction (a, b) with a du + b dv ≈ direction.
+  const double g11 = dot(du, du), g12 = dot(du, dv), g22 = dot(dv, dv);
+  const double r1 = dot(du, direction), r2 = dot(dv, direction);
+  const double det = g11 * g22 - g12 * g12;
+  const double a = (g22 * r1 - g12 * r2) / det, b = (g11 * r2 - g12 * r1) / det;
+  const Vec3 x = du * a + dv * b;
+  const double second = dot(normal, duu * (a * a) + duv * (2 * a * b) + dvv * (b * b));
+  return second / dot(x, x);
 }
 
 namespace {
@@ -40,13 +72,31 @@ namespace {
 // than this to folding back it is a cusp, which no patch can span.
 constexpr double kStraightAngle = 1e-2; // radians
 constexpr double kCuspAngle = 1e-3;     // radians
+// Intervals of the transversal-curvature samples along a segment.
+constexpr int kCurvatureIntervals = 16;
+// Directions (angles from the curve tangent) in which G¹ patches are measured
+// for master–slave and averaging, and in which a blended tensor is sampled
+// for the direct method; ω0 = 0 carries the constraint.
+constexpr std::array<double, 5> kMeasureAngles = {std::numbers::pi / 6, std::numbers::pi / 3, std::numbers::pi / 2,
+                                                  2 * std::numbers::pi / 3, 5 * std::numbers::pi / 6};
+
+/// Constrained fit (paper 000 App. A) of normal curvatures measured at the
+/// kMeasureAngles from the tangent, keeping the curve's own curvature k0 at
+/// ω0 = 0; returns the fitted normal curvature across the curve (ω = π/2).
+double constrainedTransversal(const std::array<double, 5> &measured, double k0) {
+  const CurvatureFit fit = fitCurvatureConstrained(kMeasureAngles, measured, 0.0, k0);
+  return fit.tensor.normalCurvature(std::numbers::pi / 2);
+}
 } // namespace
 
 struct Surface::Impl {
   Network network;
   SurfaceOptions options;
   std::vector<VertexFrame> frames;
+  std::vector<VertexCurvature> fitted;   ///< fitted from the curves (reported)
+  std::vector<VertexCurvature> curvatures; ///< used by gregory-g2
   std::vector<std::unique_ptr<NormalFence>> fences;
+  std::vector<std::unique_ptr<TransversalCurvature>> edgeCurvatures; ///< gregory-g2
   std::vector<Patch> patches;
   using DomainSide = DomainSideRange;
   /// Per face: the face side and side-parameter range of each domain side.
@@ -67,6 +117,17 @@ const RegularDomain &squareDomain() {
 } // namespace
 
 Surface Surface::build(const Network &network, const SurfaceOptions &options) {
+  const bool g2 = options.scheme == Scheme::GregoryG2;
+  const auto &reference = network.reference();
+  if (g2 && options.sweepline == Sweepline::Radial)
+    throw InputError("", "options", "gregory-g2 needs a Hermite sweepline (the radial sweep is not G²)");
+  if (options.fenceNormals == FenceNormals::Reference && !reference)
+    throw InputError("", "options", "fence normals from the reference surface, but the network has none");
+  if (g2 && options.edgeCurvature == EdgeCurvature::Reference && !reference)
+    throw InputError("", "options", "edge curvature from the reference surface, but the network has none");
+  const bool referenceFences =
+      options.fenceNormals == FenceNormals::Reference || (options.fenceNormals == FenceNormals::Auto && reference);
+
   auto impl = std::make_shared<Impl>();
   impl->network = network;
   impl->options = options;
@@ -80,9 +141,102 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
     surface.impl_ = std::move(impl);
     return surface;
   }
-  for (const Segment &seg : network.segments())
-    impl->fences.push_back(std::make_unique<NormalFence>(seg.curve, impl->frames[seg.start].normal,
-                                                         impl->frames[seg.end].normal));
+  // The reference surface's normal, turned to the side the faces' loops give.
+  auto referenceNormal = [&](const Vec3 &point, const Vec3 &side) {
+    const Vec3 n = reference->closest(point).normal;
+    return dot(n, side) < 0 ? -n : n;
+  };
+  // Vertex normals stay the curves' common tangent plane even with reference
+  // fences: every patch corner reproduces that plane, so a fence that met a
+  // different normal there would break G¹ (see NormalFence::fromNormalField).
+  impl->fitted = fitVertexCurvatures(network, impl->frames);
+  impl->curvatures = impl->fitted;
+  if (g2 && options.edgeCurvature == EdgeCurvature::Reference)
+    for (size_t v = 0; v < impl->curvatures.size(); ++v) {
+      const VertexCurvature &fit = impl->fitted[v];
+      impl->curvatures[v] =
+          vertexCurvatureFromReference(reference->closest(network.vertices()[v].position), fit.normal, fit.xAxis);
+    }
+
+  // Fences: one per segment, shared by both faces.
+  for (const Segment &seg : network.segments()) {
+    const Vec3 n0 = impl->frames[seg.start].normal, n1 = impl->frames[seg.end].normal;
+    if (referenceFences) {
+      const Vec3 side = n0;
+      impl->fences.push_back(std::make_unique<NormalFence>(NormalFence::fromNormalField(
+          seg.curve, [&, side](const Vec3 &p) { return referenceNormal(p, side); }, n0, n1)));
+    } else if (g2) {
+      // Rotation rates about the tangent that make N' = −S(P') at both ends.
+      const Vec3 t0 = normalized(seg.curve.derivatives(0.0)[1]), t1 = normalized(seg.curve.derivatives(1.0)[1]);
+      const double rate0 = -dot(impl->curvatures[seg.start].shape(t0), cross(t0, n0));
+      const double rate1 = -dot(impl->curvatures[seg.end].shape(t1), cross(t1, n1));
+      impl->fences.push_back(
+          std::make_unique<NormalFence>(NormalFence::curvatureCompatible(seg.curve, n0, n1, rate0, rate1)));
+    } else {
+      impl->fences.push_back(std::make_unique<NormalFence>(seg.curve, n0, n1));
+    }
+  }
+
+  // Transversal curvature κ_D per segment (gregory-g2).
+  if (g2) {
+    std::optional<Surface> g1;
+    if (options.edgeCurvature == EdgeCurvature::MasterSlave || options.edgeCurvature == EdgeCurvature::Averaging)
+      g1 = Surface::build(network, {Scheme::GregoryG1, Sweepline::Hermite, options.fenceNormals});
+    for (size_t e = 0; e < network.segments().size(); ++e) {
+      const Segment &seg = network.segments()[e];
+      const NormalFence &fence = *impl->fences[e];
+      std::vector<double> samples(kCurvatureIntervals + 1);
+      // Vertex tensors in the fence frame (t, N × t) at both ends, for the direct blend.
+      std::array<WeingartenForm, 2> endForms;
+      for (int end = 0; end < 2; ++end) {
+        const VertexCurvature &vc = impl->curvatures[end == 0 ? seg.start : seg.end];
+        const Vec3 t = normalized(seg.curve.derivatives(end)[1]), b = cross(fence.normal(end), t);
+        endForms[end] = {dot(vc.shape(t), t), dot(vc.shape(b), b), dot(vc.shape(t), b)};
+      }
+      const double length = seg.curve.arcLength();
+      for (int j = 0; j <= kCurvatureIntervals; ++j) {
+        const double u = double(j) / kCurvatureIntervals;
+        const auto c = seg.curve.derivatives(u);
+        const Vec3 n = fence.normal(u), t = normalized(c[1]), d = cross(n, t);
+        const double k0 = dot(c[2], n) / dot(c[1], c[1]);
+        double kappa = 0;
+        if (options.edgeCurvature == EdgeCurvature::Reference) {
+          const SurfaceFrame frame = reference->closest(c[0]);
+          kappa = (dot(frame.normal, n) < 0 ? -1.0 : 1.0) * frame.normalCurvature(d);
+        } else if (j == 0 || j == kCurvatureIntervals) {
+          kappa = impl->curvatures[j == 0 ? seg.start : seg.end].normalCurvature(d);
+        } else if (options.edgeCurvature == EdgeCurvature::Direct) {
+          const double x = seg.curve.arcLength(0.0, u) / length;
+          const WeingartenForm w{(1 - x) * endForms[0].w1 + x * endForms[1].w1,
+                                 (1 - x) * endForms[0].w2 + x * endForms[1].w2,
+                                 (1 - x) * endForms[0].w12 + x * endForms[1].w12};
+          std::array<double, 5> measured;
+          for (size_t k = 0; k < kMeasureAngles.size(); ++k) measured[k] = w.normalCurvature(kMeasureAngles[k]);
+          kappa = constrainedTransversal(measured, k0);
+        } else {
+          std::array<double, 5> measured{};
+          double curveCurvature = 0;
+          int count = 0;
+          for (int side = 0; side < 2; ++side) {
+            const int face = seg.faces[side];
+            if (face < 0 || (side == 1 && options.edgeCurvature == EdgeCurvature::MasterSlave)) continue;
+            const SurfacePoint2 p = g1->evaluateSecondOrder(face, g1->domainPointOnSegment(face, int(e), u));
+            const double sign = dot(p.normal, n) < 0 ? -1.0 : 1.0;
+            const Vec3 normal = p.normal * sign, b = normalized(cross(normal, t));
+            for (size_t k = 0; k < kMeasureAngles.size(); ++k)
+              measured[k] +=
+                  sign * p.normalCurvature(t * std::cos(kMeasureAngles[k]) + b * std::sin(kMeasureAngles[k]));
+            curveCurvature += dot(c[2], normal) / dot(c[1], c[1]);
+            ++count;
+          }
+          for (double &m : measured) m /= count;
+          kappa = constrainedTransversal(measured, curveCurvature / count);
+        }
+        samples[j] = kappa;
+      }
+      impl->edgeCurvatures.push_back(std::make_unique<TransversalCurvature>(samples));
+    }
+  }
 
   for (size_t f = 0; f < network.faces().size(); ++f) {
     const Face &face = network.faces()[f];
@@ -112,7 +266,7 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
         const double b1 = j + 1 == side.segments.size() ? 1.0 : side.breaks[j];
         if (b1 <= ds.sFrom || b0 >= ds.sTo) continue;
         pieces.push_back({impl->fences[side.segments[j]].get(), (b0 - ds.sFrom) / width, (b1 - ds.sFrom) / width,
-                          side.segmentReversed[j]});
+                          side.segmentReversed[j], side.segments[j]});
       }
       ribbons.emplace_back(std::move(curve), std::move(pieces));
     }
@@ -133,7 +287,15 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
       const Vec3 endTarget = endTurn < kStraightAngle ? ribbon.fenceDirection(1.0) : nextTangent;
       ribbon.setEndConditions(startTarget, endTarget);
     }
-    impl->patches.emplace_back(std::move(ribbons), options);
+    std::vector<ParabolicRibbon> parabolic;
+    if (g2)
+      for (const LinearRibbon &ribbon : ribbons) {
+        std::vector<const TransversalCurvature *> curvatures;
+        for (const LinearRibbon::Piece &piece : ribbon.pieces())
+          curvatures.push_back(impl->edgeCurvatures[piece.segment].get());
+        parabolic.emplace_back(ribbon, std::move(curvatures));
+      }
+    impl->patches.emplace_back(std::move(ribbons), options, std::move(parabolic));
     impl->domainSides.push_back(std::move(sides));
   }
   Surface surface;
@@ -167,6 +329,22 @@ Vec2 Surface::domainPointOnFaceSide(int face, int side, double s) const {
   throw InputError("", "face " + std::to_string(face), "no side " + std::to_string(side));
 }
 
+Vec2 Surface::domainPointOnSegment(int face, int segment, double u) const {
+  const Face &f = impl_->network.faces().at(face);
+  for (int k = 0; k < f.sideCount(); ++k) {
+    const FaceSide &side = f.sides[k];
+    for (size_t j = 0; j < side.segments.size(); ++j) {
+      if (side.segments[j] != segment) continue;
+      // Segment and side are affine images of the same source-curve range.
+      const double b0 = j == 0 ? 0.0 : side.breaks[j - 1];
+      const double b1 = j + 1 == side.segments.size() ? 1.0 : side.breaks[j];
+      const double x = side.segmentReversed[j] ? 1 - u : u;
+      return domainPointOnFaceSide(face, k, b0 + (b1 - b0) * x);
+    }
+  }
+  throw InputError("", "face " + std::to_string(face), "does not use segment " + std::to_string(segment));
+}
+
 SurfacePoint Surface::evaluate(int face, const Vec2 &uv) const {
   if (impl_->bezier) {
     // Square domain → (u, v) ∈ [0, 1]² (see the header); d(u,v)/d(x,y) = 1/width.
@@ -195,8 +373,83 @@ SurfacePoint Surface::evaluate(int face, const Vec2 &uv) const {
   return {r.v, r.du, r.dv, normalized(normal)};
 }
 
+SurfacePoint2 Surface::evaluateSecondOrder(int face, const Vec2 &uv, double step) const {
+  if (!(step >= 1e-8 && step <= 1e-2)) throw InputError("", "step", "must lie in [1e-8, 1e-2]");
+  const Patch &patch = impl_->patches.at(face);
+  if (impl_->options.scheme == Scheme::GregoryG2) {
+    // Exact: hyper-dual evaluation.
+    const Dual2Vec3 r = patch.evaluateSecondOrder(uv.x, uv.y);
+    SurfacePoint2 p;
+    static_cast<SurfacePoint &>(p) = evaluate(face, uv);
+    p.duu = r.duu, p.duv = r.duv, p.dvv = r.dvv;
+    return p;
+  }
+  const RegularDomain &domain = patch.domain();
+  const int n = domain.sides();
+  auto inside = [&](const Vec2 &p) {
+    for (int i = 0; i < n; ++i)
+      if (domain.perpendicularDistance(i, p.x, p.y).v < -1e-12) return false;
+    return true;
+  };
+  // Two orthonormal directions: along and across the nearest side.
+  int nearest = 0;
+  double best = INFINITY;
+  for (int i = 0; i < n; ++i) {
+    const double d = domain.perpendicularDistance(i, uv.x, uv.y).v;
+    if (d < best) best = d, nearest = i;
+  }
+  const Vec2 edge = domain.corner(nearest + 1) - domain.corner(nearest);
+  const Vec2 along = edge / norm(edge), across{-along.y, along.x};
+  // d/dw of the exact first derivatives along direction w, fourth order.
+  auto derivativeAlong = [&](const Vec2 &w, Vec3 &dSu, Vec3 &dSv) {
+    const double h = step;
+    auto at = [&](double x) { return patch.evaluate(uv.x + w.x * x, uv.y + w.y * x); };
+    if (inside(uv + w * (2 * h)) && inside(uv - w * (2 * h))) {
+      const DualVec3 m2 = at(-2 * h), m1 = at(-h), p1 = at(h), p2 = at(2 * h);
+      dSu = (m2.du - m1.du * 8.0 + p1.du * 8.0 - p2.du) / (12 * h);
+      dSv = (m2.dv - m1.dv * 8.0 + p1.dv * 8.0 - p2.dv) / (12 * h);
+      return;
+    }
+    const double sign = inside(uv + w * (4 * h)) ? 1.0 : -1.0;
+    constexpr double weights[5] = {-25, 48, -36, 16, -3};
+    dSu = {}, dSv = {};
+    for (int k = 0; k < 5; ++k) {
+      const DualVec3 r = at(sign * k * h);
+      dSu += r.du * weights[k];
+      dSv += r.dv * weights[k];
+    }
+    dSu = dSu * (sign / (12 * h));
+    dSv = dSv * (sign / (12 * h));
+  };
+  Vec3 aSu, aSv, cSu, cSv;
+  derivativeAlong(along, aSu, aSv);
+  derivativeAlong(across, cSu, cSv);
+  // ∂_w S_u = w_x S_uu + w_y S_uv and ∂_w S_v = w_x S_uv + w_y S_vv for the
+  // orthonormal pair (along, across); S_uv from both rows, averaged.
+  SurfacePoint2 p;
+  static_cast<SurfacePoint &>(p) = evaluate(face, uv);
+  p.duu = aSu * along.x + cSu * across.x;
+  p.dvv = aSv * along.y + cSv * across.y;
+  p.duv = (aSu * along.y + cSu * across.y + aSv * along.x + cSv * across.x) * 0.5;
+  return p;
+}
+
 Vec3 Surface::vertexNormal(int vertex) const { return impl_->frames.at(vertex).normal; }
 double Surface::vertexResidualAngle(int vertex) const { return impl_->frames.at(vertex).residualAngle; }
+
+VertexCurvatureInfo Surface::vertexCurvature(int vertex) const {
+  const VertexCurvature &vc = impl_->curvatures.at(vertex);
+  return {vc.tensor, vc.xAxis, vc.branch, vc.independentDirections, vc.maxResidual};
+}
+
+double Surface::transversalCurvature(int segment, double u) const {
+  if (impl_->edgeCurvatures.empty()) return std::numeric_limits<double>::quiet_NaN();
+  double k, dk;
+  impl_->edgeCurvatures.at(segment)->valueAndDerivative(u, k, dk);
+  return k;
+}
+
+Vec3 Surface::fenceNormal(int segment, double u) const { return impl_->fences.at(segment)->normal(u); }
 
 } // namespace v1
 } // namespace curvenet

@@ -20,10 +20,74 @@ Vec3 rotateAbout(const Vec3 &v, const Vec3 &axis, double angle) {
 }
 
 Vec3 projectOut(const Vec3 &v, const Vec3 &unitDirection) { return v - unitDirection * dot(v, unitDirection); }
+
+// Second-order Taylor jets of univariate functions (value, d/du, d²/du²),
+// enough to differentiate the fence normal N = m/|m| twice by the chain rule.
+struct ScalarJet {
+  double v, d, dd;
+};
+struct VectorJet {
+  Vec3 v, d, dd;
+};
+ScalarJet dot(const VectorJet &a, const VectorJet &b) {
+  return {curvenet::dot(a.v, b.v), curvenet::dot(a.d, b.v) + curvenet::dot(a.v, b.d),
+          curvenet::dot(a.dd, b.v) + 2 * curvenet::dot(a.d, b.d) + curvenet::dot(a.v, b.dd)};
+}
+VectorJet operator*(const VectorJet &a, const ScalarJet &s) {
+  return {a.v * s.v, a.d * s.v + a.v * s.d, a.dd * s.v + a.d * (2 * s.d) + a.v * s.dd};
+}
+VectorJet operator-(const VectorJet &a, const VectorJet &b) { return {a.v - b.v, a.d - b.d, a.dd - b.dd}; }
+/// x^(−1/2) for x > 0.
+ScalarJet inverseSqrt(const ScalarJet &x) {
+  const double g = 1 / std::sqrt(x.v), g3 = g * g * g, g5 = g3 * g * g;
+  return {g, -0.5 * g3 * x.d, 0.75 * g5 * x.d * x.d - 0.5 * g3 * x.dd};
+}
+VectorJet normalizedJet(const VectorJet &a) { return a * inverseSqrt(dot(a, a)); }
 } // namespace
 
-NormalFence::NormalFence(const BSplineCurve &segment, const Vec3 &startNormal, const Vec3 &endNormal)
-    : curve_(segment) {
+NormalFence::NormalFence(const BSplineCurve &segment, const Vec3 &startNormal, const Vec3 &endNormal) {
+  build(segment, startNormal, endNormal, false, 0, 0);
+}
+
+NormalFence NormalFence::curvatureCompatible(const BSplineCurve &segment, const Vec3 &startNormal,
+                                             const Vec3 &endNormal, double startRate, double endRate) {
+  NormalFence fence;
+  fence.build(segment, startNormal, endNormal, true, startRate, endRate);
+  return fence;
+}
+
+NormalFence NormalFence::fromNormalField(const BSplineCurve &segment,
+                                         const std::function<Vec3(const Vec3 &)> &normalAt, const Vec3 &startNormal,
+                                         const Vec3 &endNormal) {
+  NormalFence fence;
+  fence.curve_ = segment;
+  std::vector<double> params(kFenceSteps + 1);
+  std::vector<Vec3> normals(kFenceSteps + 1), tangents(kFenceSteps + 1);
+  for (int k = 0; k <= kFenceSteps; ++k) {
+    params[k] = double(k) / kFenceSteps;
+    const auto d = segment.derivatives(params[k]);
+    tangents[k] = normalized(d[1]);
+    Vec3 n = normalized(projectOut(normalAt(d[0]), tangents[k]));
+    // The field's orientation is the caller's; keep the samples continuous.
+    if (k > 0 && dot(n, normals[k - 1]) < 0) n = -n;
+    normals[k] = n;
+  }
+  // Signed angles about the tangent from the field to the vertex normals.
+  auto angleTo = [](const Vec3 &from, const Vec3 &to, const Vec3 &axis) {
+    const Vec3 target = normalized(projectOut(to, axis));
+    return std::atan2(dot(cross(from, target), axis), dot(from, target));
+  };
+  const double start = angleTo(normals.front(), startNormal, tangents.front());
+  const double end = angleTo(normals.back(), endNormal, tangents.back());
+  for (int k = 0; k <= kFenceSteps; ++k)
+    normals[k] = rotateAbout(normals[k], tangents[k], start + (end - start) * params[k]);
+  fence.smoothNormal_ = BSplineCurve::interpolate(3, params, normals);
+  return fence;
+}
+
+void NormalFence::build(const BSplineCurve &segment, const Vec3 &startNormal, const Vec3 &endNormal, bool rates,
+                        double startRate, double endRate) {
+  curve_ = segment;
   std::vector<double> params(kFenceSteps + 1);
   std::vector<Vec3> points(kFenceSteps + 1), tangents(kFenceSteps + 1), normals(kFenceSteps + 1);
   std::vector<double> arc(kFenceSteps + 1, 0.0);
@@ -32,7 +96,8 @@ NormalFence::NormalFence(const BSplineCurve &segment, const Vec3 &startNormal, c
     const auto d = segment.derivatives(params[k]);
     points[k] = d[0];
     tangents[k] = normalized(d[1]);
-    if (k > 0) arc[k] = arc[k - 1] + norm(points[k] - points[k - 1]);
+    // Arc length exactly (the cubic angle profile below is in arc length).
+    if (k > 0) arc[k] = arc[k - 1] + segment.arcLength(params[k - 1], params[k]);
   }
   // Rotation-minimizing frame by double reflection [WJZL08].
   normals[0] = normalized(projectOut(startNormal, tangents[0]));
@@ -49,12 +114,21 @@ NormalFence::NormalFence(const BSplineCurve &segment, const Vec3 &startNormal, c
     if (c2 > 0) r = r - v2 * (2 / c2 * dot(v2, r));
     normals[k + 1] = normalized(projectOut(r, tangents[k + 1]));
   }
-  // The remaining rotation to the end normal, spread along the arc length.
+  // The remaining rotation to the end normal, spread along the arc length:
+  // linearly (G¹), or by the cubic Hermite that also meets the end rates (G²).
   const Vec3 target = normalized(projectOut(endNormal, tangents.back()));
   const double angle =
       std::atan2(dot(cross(normals.back(), target), tangents.back()), dot(normals.back(), target));
   const double length = arc.back() > 0 ? arc.back() : 1.0;
-  for (int k = 0; k <= kFenceSteps; ++k) normals[k] = rotateAbout(normals[k], tangents[k], angle * arc[k] / length);
+  for (int k = 0; k <= kFenceSteps; ++k) {
+    const double x = arc[k] / length;
+    double theta = angle * x;
+    if (rates) {
+      const double h01 = x * x * (3 - 2 * x), h10 = x * (1 - x) * (1 - x), h11 = x * x * (x - 1);
+      theta = angle * h01 + length * (startRate * h10 + endRate * h11);
+    }
+    normals[k] = rotateAbout(normals[k], tangents[k], theta);
+  }
   normals.back() = target;
   smoothNormal_ = BSplineCurve::interpolate(3, params, normals);
 }
@@ -81,18 +155,52 @@ void NormalFence::normalAndDerivative(double u, Vec3 &n, Vec3 &dn) const {
   dn = projectOut(dm, n) / length;
 }
 
+void NormalFence::normalJet(double u, Vec3 &n, Vec3 &dn, Vec3 &ddn) const {
+  const auto c = curve_.derivatives(u);
+  const auto f = smoothNormal_.derivatives(u);
+  const VectorJet t = normalizedJet({c[1], c[2], c[3]});
+  const VectorJet fj{f[0], f[1], f[2]};
+  const VectorJet result = normalizedJet(fj - t * dot(fj, t));
+  n = result.v, dn = result.d, ddn = result.dd;
+}
+
+TransversalCurvature::TransversalCurvature(const std::vector<double> &samples) {
+  CURVENET_CHECK(samples.size() >= 4, "need at least 4 curvature samples, got " + std::to_string(samples.size()));
+  std::vector<double> params(samples.size());
+  std::vector<Vec3> values(samples.size());
+  for (size_t j = 0; j < samples.size(); ++j) {
+    params[j] = double(j) / double(samples.size() - 1);
+    values[j] = {samples[j], 0, 0};
+  }
+  spline_ = BSplineCurve::interpolate(3, params, values);
+}
+
+void TransversalCurvature::valueAndDerivative(double u, double &k, double &dk) const {
+  const auto d = spline_.derivatives(u);
+  k = d[0].x;
+  dk = d[1].x;
+}
+
 LinearRibbon::LinearRibbon(BSplineCurve curve, std::vector<Piece> pieces)
     : curve_(std::move(curve)), pieces_(std::move(pieces)) {
   CURVENET_CHECK(!pieces_.empty());
 }
 
-void LinearRibbon::fence(double s, Vec3 &n, Vec3 &dn) const {
+int LinearRibbon::pieceAt(double s, double &local, double &dLocal) const {
   auto piece = std::find_if(pieces_.begin(), pieces_.end(), [s](const Piece &p) { return s <= p.sTo; });
   if (piece == pieces_.end()) piece = pieces_.end() - 1;
   const double scale = 1.0 / (piece->sTo - piece->sFrom);
-  const double local = std::clamp((s - piece->sFrom) * scale, 0.0, 1.0);
-  piece->fence->normalAndDerivative(piece->reversed ? 1 - local : local, n, dn);
-  dn = dn * (piece->reversed ? -scale : scale);
+  const double x = std::clamp((s - piece->sFrom) * scale, 0.0, 1.0);
+  local = piece->reversed ? 1 - x : x;
+  dLocal = piece->reversed ? -scale : scale;
+  return static_cast<int>(piece - pieces_.begin());
+}
+
+void LinearRibbon::fence(double s, Vec3 &n, Vec3 &dn) const {
+  double local, dLocal;
+  const Piece &piece = pieces_[pieceAt(s, local, dLocal)];
+  piece.fence->normalAndDerivative(local, n, dn);
+  dn = dn * dLocal;
 }
 
 Vec3 LinearRibbon::fenceDirection(double s) const {
@@ -122,6 +230,75 @@ RibbonJet LinearRibbon::at(double s) const {
   const double alpha = alpha0_ + (alpha1_ - alpha0_) * s, beta = beta0_ + (beta1_ - beta0_) * s;
   const double dAlpha = alpha1_ - alpha0_, dBeta = beta1_ - beta0_;
   return {c[0], c[1], D * alpha + c[1] * beta, D * dAlpha + dD * alpha + c[1] * dBeta + c[2] * beta};
+}
+
+LinearRibbon::SecondJet LinearRibbon::secondJet(double s) const {
+  SecondJet j;
+  const auto c = curve_.derivatives(s);
+  j.P = c[0], j.dP = c[1], j.ddP = c[2], j.dddP = c[3];
+  double local, dLocal;
+  const Piece &piece = pieces_[pieceAt(s, local, dLocal)];
+  piece.fence->normalJet(local, j.N, j.dN, j.ddN);
+  j.dN = j.dN * dLocal;
+  j.ddN = j.ddN * (dLocal * dLocal);
+  j.D = cross(j.N, j.dP);
+  j.dD = cross(j.dN, j.dP) + cross(j.N, j.ddP);
+  const Vec3 ddD = cross(j.ddN, j.dP) + 2.0 * cross(j.dN, j.ddP) + cross(j.N, j.dddP);
+  j.alpha = alpha0_ + (alpha1_ - alpha0_) * s, j.beta = beta0_ + (beta1_ - beta0_) * s;
+  j.dAlpha = alpha1_ - alpha0_, j.dBeta = beta1_ - beta0_;
+  j.T = j.D * j.alpha + j.dP * j.beta;
+  j.dT = j.D * j.dAlpha + j.dD * j.alpha + j.dP * j.dBeta + j.ddP * j.beta;
+  j.ddT = j.dD * (2 * j.dAlpha) + ddD * j.alpha + j.ddP * (2 * j.dBeta) + j.dddP * j.beta;
+  return j;
+}
+
+ParabolicRibbon::ParabolicRibbon(LinearRibbon linear, std::vector<const TransversalCurvature *> curvatures)
+    : linear_(std::move(linear)), curvatures_(std::move(curvatures)) {
+  CURVENET_CHECK(curvatures_.size() == linear_.pieces().size());
+  start_ = secondOrder(0.0);
+  end_ = secondOrder(1.0);
+}
+
+ParabolicJet ParabolicRibbon::at(double s) const {
+  const LinearRibbon::SecondJet j = linear_.secondJet(s);
+  double local, dLocal;
+  const int piece = linear_.pieceAt(s, local, dLocal);
+  double kappa, dKappa;
+  curvatures_[piece]->valueAndDerivative(local, kappa, dKappa);
+  dKappa *= dLocal;
+  // g = II(T, T) = α² |D|² κ_D − 2αβ N'·D + β² N·P'' and its s-derivative.
+  const double a = j.alpha, da = j.dAlpha, b = j.beta, db = j.dBeta;
+  const double dd = dot(j.D, j.D), ddd = 2 * dot(j.D, j.dD);
+  const double e = dot(j.dN, j.D), de = dot(j.ddN, j.D) + dot(j.dN, j.dD);
+  const double f = dot(j.N, j.ddP), df = dot(j.dN, j.ddP) + dot(j.N, j.dddP);
+  const double g = a * a * dd * kappa - 2 * a * b * e + b * b * f;
+  const double dg = 2 * a * da * dd * kappa + a * a * ddd * kappa + a * a * dd * dKappa - 2 * (da * b + a * db) * e -
+                    2 * a * b * de + 2 * b * db * f + b * b * df;
+  return {j.P, j.dP, j.T, j.dT, j.N * g, j.N * dg + j.dN * g};
+}
+
+double ParabolicRibbon::crossCurvature(double s) const {
+  // The curve d ↦ R(s, d) has R_d = T and R_dd = C: normal curvature C·N / |T|².
+  const ParabolicJet j = at(s);
+  return dot(j.C, linear_.secondJet(s).N) / dot(j.T, j.T);
+}
+
+SideEndData ParabolicRibbon::secondOrder(double s) const {
+  const LinearRibbon::SecondJet j = linear_.secondJet(s);
+  const ParabolicJet p = at(s);
+  // C'' by fourth-order differences of the exact C': central inside, one-sided
+  // near the ends (the third derivative of C would need that of the fence).
+  constexpr double h = 1e-3;
+  Vec3 ddC;
+  if (s >= 4 * h && s <= 1 - 4 * h) {
+    ddC = (at(s - 2 * h).dC - at(s - h).dC * 8.0 + at(s + h).dC * 8.0 - at(s + 2 * h).dC) / (12 * h);
+  } else {
+    const double sign = s < 0.5 ? 1.0 : -1.0;
+    constexpr double weights[5] = {-25, 48, -36, 16, -3};
+    for (int k = 0; k < 5; ++k) ddC += at(s + sign * k * h).dC * weights[k];
+    ddC = ddC * (sign / (12 * h));
+  }
+  return {j.P, j.dP, j.ddP, j.T, j.dT, j.ddT, p.C, p.dC, ddC};
 }
 
 } // namespace v1

@@ -1,10 +1,13 @@
-// Normal fences and linear ribbons (paper 000 Sec. 3.2, DESIGN.md §3).
+// Normal fences, linear and parabolic ribbons (paper 000 Sec. 3.2–3.4,
+// DESIGN.md §3).
 //
 // A fence belongs to a segment and is shared by the faces on both sides, so
 // both patches see the same normal N(u) and their cross-derivatives lie in
-// the same plane span(P', N × P'): G¹ by construction.
+// the same plane span(P', N × P'): G¹ by construction. For G² the segment
+// also carries one transversal curvature κ_D(u), shared the same way.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -21,18 +24,73 @@ class NormalFence {
 public:
   NormalFence(const BSplineCurve &segment, const Vec3 &startNormal, const Vec3 &endNormal);
 
+  /// Curvature-compatible fence for G² (paper 000 eqs. 13–14, DESIGN.md §3):
+  /// the rotation-minimizing frame from the start normal, turned about the
+  /// tangent by an angle θ(σ) (σ = arc length, L the length) that is the cubic
+  /// Hermite with θ(0) = 0, θ(L) = the angle left to the end normal, and
+  /// dθ/dσ = startRate, endRate at the ends. The rotation rate about the
+  /// tangent is the only component of N' not fixed by N ⊥ P', so the rates
+  /// −(S t)·(t × N) of the end vertices' shape operators S give N' = −S(P')
+  /// at both ends (Weingarten). Among such angle functions the cubic has the
+  /// least ∫ θ''²: the smoothest rotation that still meets the end rates.
+  static NormalFence curvatureCompatible(const BSplineCurve &segment, const Vec3 &startNormal,
+                                         const Vec3 &endNormal, double startRate, double endRate);
+
+  /// Fence whose normals are taken from a known surface (paper 000 Sec. 5.3):
+  /// `normalAt(point)` at the fence samples, projected perpendicular to the
+  /// tangent and interpolated. At the two ends the vertex normals (the
+  /// curves' common tangent plane, which every patch corner reproduces) win:
+  /// where the curves lie only approximately on the surface, the angle
+  /// between the field and the vertex normal is taken out linearly along the
+  /// segment, so the fence still meets every patch corner exactly (G¹).
+  static NormalFence fromNormalField(const BSplineCurve &segment,
+                                     const std::function<Vec3(const Vec3 &)> &normalAt, const Vec3 &startNormal,
+                                     const Vec3 &endNormal);
+
   Vec3 normal(double u) const;
   /// Normal and its derivative d N / d u.
   void normalAndDerivative(double u, Vec3 &n, Vec3 &dn) const;
+  /// Normal and its first two derivatives with respect to u.
+  void normalJet(double u, Vec3 &n, Vec3 &dn, Vec3 &ddn) const;
 
 private:
+  NormalFence() = default;
+  void build(const BSplineCurve &segment, const Vec3 &startNormal, const Vec3 &endNormal, bool rates,
+             double startRate, double endRate);
   BSplineCurve curve_;
   BSplineCurve smoothNormal_; ///< cubic interpolant of the corrected RMF normals (before projection)
+};
+
+/// Normal curvature κ_D(u) of the surface along a segment in the common
+/// transversal direction D = N × P' (u ∈ [0, 1] the segment parameter), shared
+/// by the faces on both sides. With the fence (which fixes the normal and the
+/// twist −N'·D) and the curve it fixes the whole second fundamental form along
+/// the edge, so parabolic ribbons built from it are G² (Linkage Curve
+/// Theorem). A cubic interpolant of samples at u_j = j / (size − 1).
+class TransversalCurvature {
+public:
+  explicit TransversalCurvature(const std::vector<double> &samples);
+  /// κ_D and dκ_D/du.
+  void valueAndDerivative(double u, double &k, double &dk) const;
+
+private:
+  BSplineCurve spline_; ///< κ in the x coordinate
 };
 
 /// Side data of a ribbon at one side parameter: P, P', T and T' (d/ds).
 struct RibbonJet {
   Vec3 P, dP, T, dT;
+};
+
+/// Side data of a parabolic ribbon: also the second cross-derivative C, C'.
+struct ParabolicJet {
+  Vec3 P, dP, T, dT, C, dC;
+};
+
+/// What the nine-term correction patch needs at one end of a side: P, T, C
+/// and their first two s-derivatives.
+struct SideEndData {
+  Vec3 P, dP, ddP, T, dT, ddT, C, dC, ddC;
 };
 
 /// Linear ribbon R(s, d) = P(s) + d T(s) of one face side, with
@@ -47,6 +105,7 @@ public:
     const NormalFence *fence;
     double sFrom, sTo; ///< range of side parameters on this segment
     bool reversed;     ///< the side runs the segment from end to start
+    int segment = -1;  ///< network segment index (for edge data lookups)
   };
   LinearRibbon(BSplineCurve curve, std::vector<Piece> pieces);
 
@@ -58,11 +117,56 @@ public:
   /// D = N × P' at the ends (for straight-angle corners).
   Vec3 fenceDirection(double s) const;
 
+  /// Second-order data along the side: P with three s-derivatives, N and T
+  /// with two (exact: the curve and the fence's cubic interpolant are
+  /// differentiated analytically), and α, β with their slopes.
+  struct SecondJet {
+    Vec3 P, dP, ddP, dddP, N, dN, ddN, D, dD, T, dT, ddT;
+    double alpha, dAlpha, beta, dBeta;
+  };
+  SecondJet secondJet(double s) const;
+  const std::vector<Piece> &pieces() const { return pieces_; }
+  /// Index of the piece holding side parameter s, the segment parameter
+  /// there, and du/ds.
+  int pieceAt(double s, double &local, double &dLocal) const;
+
 private:
   void fence(double s, Vec3 &n, Vec3 &dn) const;
   BSplineCurve curve_;
   std::vector<Piece> pieces_;
   double alpha0_ = 0, alpha1_ = 0, beta0_ = 0, beta1_ = 0;
+};
+
+/// Parabolic ribbon R(s, d) = P + d T + ½ d² C (paper 000 eqs. 10, 15) over a
+/// linear ribbon: C = κ_T |T|² N, where κ_T |T|² = II(T, T) is the second
+/// fundamental form fixed along the edge by the fence (normal N, twist
+/// II(P', D) = −N'·D), the curve (II(P', P') = N·P'') and the shared
+/// transversal curvature κ_D (II(D, D) = κ_D |D|²):
+///   II(T, T) = α² |D|² κ_D − 2αβ N'·D + β² N·P''   for T = αD + βP'.
+/// Both faces of an edge thus carry the same second fundamental form, and the
+/// curve d ↦ R(s, d) has normal curvature κ_T at d = 0.
+class ParabolicRibbon {
+public:
+  /// `curvatures[j]` belongs to `linear.pieces()[j]` (the same segment).
+  ParabolicRibbon(LinearRibbon linear, std::vector<const TransversalCurvature *> curvatures);
+
+  const LinearRibbon &linear() const { return linear_; }
+  ParabolicJet at(double s) const;
+  /// κ_T at s: the normal curvature of the ribbon in the direction of T.
+  double crossCurvature(double s) const;
+  /// Correction-patch data at s = 0 and s = 1 (C'' by a fourth-order
+  /// one-sided difference of the exact C' with step 1e-3; everything else exact).
+  const SideEndData &start() const { return start_; }
+  const SideEndData &end() const { return end_; }
+  /// P, T, C with two s-derivatives anywhere (for second derivatives of the
+  /// patch). C'' is the fourth-order difference of the exact C' (step 1e-3;
+  /// one-sided within 4 steps of an end, so that it equals end()/start() there).
+  SideEndData secondOrder(double s) const;
+
+private:
+  LinearRibbon linear_;
+  std::vector<const TransversalCurvature *> curvatures_;
+  SideEndData start_, end_;
 };
 
 } // namespace v1
