@@ -60,6 +60,13 @@ Command addCheckCommand(CLI::App &app) {
             if (options->tweak) runTweak(network, options->output, report);
             const Surface surface = Surface::build(network, {scheme});
             addSurfaceReport(report, surface, options->samples, options->resolution);
+            if (scheme == Scheme::BezierG1) {
+              // Paper 003's comparison: the C⁰ Coons patches of the same network beside the G¹ figures.
+              nlohmann::json coons;
+              addSurfaceReport(coons, Surface::build(network, {Scheme::CoonsC0}), options->samples,
+                               options->resolution);
+              report["baseline"] = coons;
+            }
             if (options->json) std::printf("%s\n", report.dump(2).c_str());
             else printReportTable(report);
             return 0;

@@ -96,6 +96,26 @@ Command addDemoCommand(CLI::App &app) {
                 printPictureLine(path, picture);
               }
             }
+            // Paper 003's pictures: C⁰ Coons vs G¹ Bézier patches over a
+            // network with a T-junction, reflection lines side by side.
+            {
+              const std::string tName = "hemisphere-tjunction";
+              const Network tNetwork = Network::build(builtinNetwork(tName), "builtin:" + tName);
+              for (Scheme scheme : {Scheme::CoonsC0, Scheme::BezierG1}) {
+                const Surface surface = Surface::build(tNetwork, {scheme});
+                render::RenderOptions options;
+                options.width = 480;
+                options.height = 360;
+                options.mode = render::Mode::Reflection;
+                options.boundaries = true;
+                const RenderedPicture picture = renderPicture(surface, options, 32);
+                const std::string path = *out + "/reflection-" + tName + "-" + schemeName(scheme) + ".png";
+                render::writeImage(picture.image, path);
+                report["pictures"].push_back({{"file", path}, {"scheme", schemeName(scheme)}, {"network", tName},
+                                              {"mode", "reflection"}});
+                printPictureLine(path, picture);
+              }
+            }
             const std::string reportPath = *out + "/report.json";
             writeFileAtomically(reportPath, [&](std::ostream &s) { s << report.dump(2) << "\n"; });
             std::printf("wrote %s\n", reportPath.c_str());

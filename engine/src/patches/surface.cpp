@@ -375,16 +375,16 @@ SurfacePoint Surface::evaluate(int face, const Vec2 &uv) const {
 
 SurfacePoint2 Surface::evaluateSecondOrder(int face, const Vec2 &uv, double step) const {
   if (!(step >= 1e-8 && step <= 1e-2)) throw InputError("", "step", "must lie in [1e-8, 1e-2]");
-  const Patch &patch = impl_->patches.at(face);
   if (impl_->options.scheme == Scheme::GregoryG2) {
     // Exact: hyper-dual evaluation.
-    const Dual2Vec3 r = patch.evaluateSecondOrder(uv.x, uv.y);
+    const Dual2Vec3 r = impl_->patches.at(face).evaluateSecondOrder(uv.x, uv.y);
     SurfacePoint2 p;
     static_cast<SurfacePoint &>(p) = evaluate(face, uv);
     p.duu = r.duu, p.duv = r.duv, p.dvv = r.dvv;
     return p;
   }
-  const RegularDomain &domain = patch.domain();
+  // Every scheme's domain is the regular n-gon (the Bézier schemes' too).
+  const RegularDomain domain(domainSides(face));
   const int n = domain.sides();
   auto inside = [&](const Vec2 &p) {
     for (int i = 0; i < n; ++i)
@@ -403,9 +403,9 @@ SurfacePoint2 Surface::evaluateSecondOrder(int face, const Vec2 &uv, double step
   // d/dw of the exact first derivatives along direction w, fourth order.
   auto derivativeAlong = [&](const Vec2 &w, Vec3 &dSu, Vec3 &dSv) {
     const double h = step;
-    auto at = [&](double x) { return patch.evaluate(uv.x + w.x * x, uv.y + w.y * x); };
+    auto at = [&](double x) { return evaluate(face, {uv.x + w.x * x, uv.y + w.y * x}); };
     if (inside(uv + w * (2 * h)) && inside(uv - w * (2 * h))) {
-      const DualVec3 m2 = at(-2 * h), m1 = at(-h), p1 = at(h), p2 = at(2 * h);
+      const SurfacePoint m2 = at(-2 * h), m1 = at(-h), p1 = at(h), p2 = at(2 * h);
       dSu = (m2.du - m1.du * 8.0 + p1.du * 8.0 - p2.du) / (12 * h);
       dSv = (m2.dv - m1.dv * 8.0 + p1.dv * 8.0 - p2.dv) / (12 * h);
       return;
@@ -414,7 +414,7 @@ SurfacePoint2 Surface::evaluateSecondOrder(int face, const Vec2 &uv, double step
     constexpr double weights[5] = {-25, 48, -36, 16, -3};
     dSu = {}, dSv = {};
     for (int k = 0; k < 5; ++k) {
-      const DualVec3 r = at(sign * k * h);
+      const SurfacePoint r = at(sign * k * h);
       dSu += r.du * weights[k];
       dSv += r.dv * weights[k];
     }
