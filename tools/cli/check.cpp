@@ -59,6 +59,7 @@ Command addCheckCommand(CLI::App &app) {
             addVertexAnalysis(report, analyzeNetwork(network));
             if (options->tweak) runTweak(network, options->output, report);
             const Surface surface = Surface::build(network, {scheme});
+            warnAboutFolds(surface);
             addSurfaceReport(report, surface, options->samples, options->resolution);
             if (scheme == Scheme::BezierG1) {
               // Paper 003's comparison: the C⁰ Coons patches of the same network beside the G¹ figures.

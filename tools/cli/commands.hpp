@@ -39,6 +39,15 @@ struct RenderedPicture {
 RenderedPicture renderPicture(const Surface &surface, const render::RenderOptions &options, int resolution);
 /// "wrote PATH (size, mode, range, triangles, time, rays/s)".
 void printPictureLine(const std::string &path, const RenderedPicture &picture);
+/// One stderr warning per face whose patch folds (Surface::foldedFaces).
+void warnAboutFolds(const Surface &surface);
+
+/// Memory a mesh of `vertices` needs while being built (and written as text).
+std::size_t estimateMeshBytes(std::size_t vertices, bool writesText);
+/// InputError naming `what` with the estimate when `bytes` exceeds 80% of
+/// the memory available now; called before any work starts.
+void refuseIfTooLarge(std::size_t bytes, const std::string &what);
+
 /// Commands whose engine part is not built yet: they say so and exit 2.
 Command addPendingCommand(CLI::App &app, const std::string &name, const std::string &summary,
                           const std::string &missing);

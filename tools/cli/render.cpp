@@ -21,6 +21,12 @@ RenderedPicture renderPicture(const Surface &surface, const render::RenderOption
   t.resolution = resolution;
   t.threads = options.threads;
   t.recordDomainPoints = curvatureMode;
+  // Mesh + Embree's BVH (~ the mesh again) + image planes (color, phase,
+  // coverage, face: 24 B per pixel) before any work starts.
+  const std::size_t pixels = std::size_t(options.width) * std::size_t(options.height);
+  refuseIfTooLarge(2 * estimateMeshBytes(estimateMeshVertices(surface, resolution), false) + 24 * pixels,
+                   "--resolution " + std::to_string(resolution) + " at " + std::to_string(options.width) + "x" +
+                       std::to_string(options.height));
   RenderedPicture out;
   out.mesh = tessellate(surface, t);
   std::vector<double> values;
@@ -95,6 +101,7 @@ Command addRenderCommand(CLI::App &app) {
 
             const Network network = Network::build(loadNetworkInput(o->input), o->input);
             const Surface surface = Surface::build(network, {scheme});
+            warnAboutFolds(surface);
             const RenderedPicture picture = renderPicture(surface, r, o->resolution);
             render::writeImage(picture.image, o->output);
             printPictureLine(o->output, picture);

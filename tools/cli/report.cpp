@@ -37,6 +37,7 @@ nlohmann::json networkReport(const Network &network, const std::string &input) {
 
 void addSurfaceReport(nlohmann::json &report, const Surface &surface, int samplesPerSegment, int resolution) {
   report["scheme"] = schemeName(surface.options().scheme);
+  report["folded_faces"] = surface.foldedFaces();
   const ContinuityReport c = measureContinuity(surface, {samplesPerSegment});
   report["continuity"] = {{"max_position_gap", c.maxPositionGap},
                           {"max_normal_angle_deg", c.maxNormalAngleDeg},

@@ -33,6 +33,9 @@ Command addTessellateCommand(CLI::App &app) {
               throw InputError("", "--control-nets", "needs --scheme bezier-g1 or coons-c0");
             const Network network = Network::build(loadNetworkInput(o->input), o->input);
             const Surface surface = Surface::build(network, {scheme});
+            warnAboutFolds(surface);
+            refuseIfTooLarge(estimateMeshBytes(estimateMeshVertices(surface, o->resolution), true),
+                             "--resolution " + std::to_string(o->resolution));
             const Mesh mesh = tessellate(surface, {o->resolution, o->threads});
             writeMeshFile(mesh, o->output);
             if (!o->controlNets.empty()) writeControlNets(surface, o->controlNets);
@@ -54,6 +57,8 @@ Command addDemoCommand(CLI::App &app) {
             for (Scheme scheme : availableSchemes()) {
               if (!acceptsAnyLoop(scheme)) continue; // the default network has 5- and 6-sided loops
               const Surface surface = Surface::build(network, {scheme});
+              warnAboutFolds(surface);
+            warnAboutFolds(surface);
               nlohmann::json figures;
               addSurfaceReport(figures, surface, 64, 32);
               report["schemes"][schemeName(scheme)] = figures;

@@ -175,6 +175,13 @@ public:
   static Surface build(const Network &network, const SurfaceOptions &options = {});
 
   const Network &network() const;
+  /// Faces whose patch folds over itself: the surface normal turns over
+  /// inside the face (a loop too far from convex for its regular n-gon
+  /// domain, or ribbons extrapolated far beyond what the boundary supports).
+  /// Found at build time by sampling each face on an 8-row fan grid; empty
+  /// for well-formed patches. The command-line tools warn about every such
+  /// face and `check` lists them; the surface is still built and evaluated.
+  const std::vector<int> &foldedFaces() const;
   const SurfaceOptions &options() const;
   int faceCount() const;
 

@@ -15,6 +15,8 @@
 #include <type_traits>
 #include <utility>
 
+#include <ext/stdio_filebuf.h>
+#include <fcntl.h>
 #include <unistd.h>
 
 #include "curvenet/builtins.hpp"
@@ -86,9 +88,51 @@ NetworkDescription loadNetworkInput(const std::string &input) {
   return readNetworkFile(input);
 }
 
+namespace {
+
+/// Writes through `writer` into a file that has no name yet (O_TMPFILE in the
+/// target's folder) and gives it the final name only when complete: a
+/// process killed at any point (Ctrl-C, SIGKILL, a crash) leaves nothing
+/// behind. Returns false where the file system has no unnamed files.
+bool writeUnnamedThenLink(const std::string &path, const std::function<void(std::ostream &)> &writer) {
+  const std::filesystem::path target(path);
+  const std::string folder = target.has_parent_path() ? target.parent_path().string() : ".";
+  const int fd = ::open(folder.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666); // the umask applies
+  if (fd < 0) {
+    if (errno == EOPNOTSUPP || errno == EISDIR || errno == EINVAL) return false;
+    throw InputError(path, {}, std::string("cannot create the output file: ") + std::strerror(errno));
+  }
+  {
+    __gnu_cxx::stdio_filebuf<char> buffer(fd, std::ios::out | std::ios::binary); // owns and closes fd
+    std::ostream out(&buffer);
+    writer(out);
+    out.flush();
+    if (!out) throw InputError(path, {}, std::string("write failed: ") + std::strerror(errno));
+    if (::fsync(fd) != 0) throw InputError(path, {}, std::string("write failed: ") + std::strerror(errno));
+    // linkat cannot replace an existing file: link under a unique temporary
+    // name, then rename over the target (atomic).
+    static std::atomic<std::uint64_t> counter{0};
+    const std::string temp = path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+    const std::string procPath = "/proc/self/fd/" + std::to_string(fd);
+    if (::linkat(AT_FDCWD, procPath.c_str(), AT_FDCWD, temp.c_str(), AT_SYMLINK_FOLLOW) != 0)
+      throw InputError(path, {}, std::string("cannot name the finished file: ") + std::strerror(errno));
+    std::error_code ec;
+    std::filesystem::rename(temp, path, ec);
+    if (ec) {
+      std::filesystem::remove(temp, ec);
+      throw InputError(path, {}, "cannot move the finished file into place: " + ec.message());
+    }
+  }
+  return true;
+}
+
+} // namespace
+
 void writeFileAtomically(const std::string &path, const std::function<void(std::ostream &)> &writer) {
-  // pid + a process-wide counter make the temporary unique among concurrent
-  // writers (threads here, other processes) aiming at the same folder.
+  if (writeUnnamedThenLink(path, writer)) return;
+  // Fallback (file systems without O_TMPFILE): a named temporary beside the
+  // target, renamed when complete and removed on any error. pid + a
+  // process-wide counter make it unique among concurrent writers.
   static std::atomic<std::uint64_t> counter{0};
   const std::string temp = path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
   try {

@@ -89,7 +89,41 @@ double constrainedTransversal(const std::array<double, 5> &measured, double k0) 
 }
 } // namespace
 
+/// A loop far from convex (a concave corner, a strongly bent side) can make
+/// the map from the regular n-gon fold over itself: the surface normal
+/// du × dv turns over inside the patch. Detected on the n-fold fan grid of
+/// the tessellator at 8 rows (inset a little from the sides, so that
+/// straight-angle corners with vanishing derivatives are avoided): two
+/// neighbouring samples whose normals point into opposite half-spaces. A
+/// smooth patch cannot turn its normal by 90° between samples this close
+/// unless it folds, so no well-formed patch is reported.
+bool patchFolds(const Patch &patch) {
+  constexpr int rows = 8;
+  const RegularDomain &domain = patch.domain();
+  const int n = domain.sides();
+  auto normalAt = [&](const Vec2 &uv) {
+    const DualVec3 r = patch.evaluate(uv.x, uv.y);
+    return cross(r.du, r.dv);
+  };
+  for (int i = 0; i < n; ++i) {
+    std::vector<std::vector<Vec3>> grid(rows);
+    for (int k = 0; k < rows; ++k) {
+      const double shrink = 1.0 - (k + 0.02) / rows;
+      const Vec2 a = domain.corner(i) * shrink, b = domain.corner(i + 1) * shrink;
+      const int m = rows - k;
+      for (int j = 0; j <= m; ++j) grid[k].push_back(normalAt(a + (b - a) * ((j + 0.02) / (m + 0.04))));
+    }
+    for (int k = 0; k < rows; ++k)
+      for (size_t j = 0; j < grid[k].size(); ++j) {
+        if (j + 1 < grid[k].size() && dot(grid[k][j], grid[k][j + 1]) <= 0) return true;
+        if (k + 1 < rows && j < grid[k + 1].size() && dot(grid[k][j], grid[k + 1][j]) <= 0) return true;
+      }
+  }
+  return false;
+}
+
 struct Surface::Impl {
+  std::vector<int> folded; ///< faces whose patch folds over itself (see patchFolds)
   Network network;
   SurfaceOptions options;
   std::vector<VertexFrame> frames;
@@ -297,6 +331,7 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
       }
     impl->patches.emplace_back(std::move(ribbons), options, std::move(parabolic));
     impl->domainSides.push_back(std::move(sides));
+    if (patchFolds(impl->patches.back())) impl->folded.push_back(static_cast<int>(f));
   }
   Surface surface;
   surface.impl_ = std::move(impl);
@@ -304,6 +339,7 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
 }
 
 const Network &Surface::network() const { return impl_->network; }
+const std::vector<int> &Surface::foldedFaces() const { return impl_->folded; }
 const SurfaceOptions &Surface::options() const { return impl_->options; }
 int Surface::faceCount() const {
   return static_cast<int>(impl_->bezier ? impl_->bezier->faces.size() : impl_->patches.size());
