@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstring>
 #include <new>
+#include <type_traits>
 #include <vector>
 
 #include "curvenet/curvenet.hpp"
@@ -133,11 +134,11 @@ curvenet_status_code adopt(Result<Model> model, curvenet_model **out, curvenet_s
 }
 
 /// Evaluates in chunks: the C arrays are converted to Vec2 / SurfacePoint
-/// through buffers of bounded size, each chunk evaluated as one facade batch.
-template <class Point, class CPoint, class Evaluate>
+/// through buffers of bounded size, each chunk evaluated as one facade batch
+/// (first or second order by the point type).
+template <class Point, class CPoint>
 curvenet_status_code evaluateChunks(const curvenet_model *model, int face, const double *uv, std::size_t count,
-                                    CPoint *out, const curvenet_batch_options *batch, curvenet_status *status,
-                                    Evaluate &&evaluate) {
+                                    CPoint *out, const curvenet_batch_options *batch, curvenet_status *status) {
   if (!model) return nullArgument("model", status);
   if (count && (!uv || !out)) return nullArgument(!uv ? "uv" : "out", status);
   BatchOptions options;
@@ -152,7 +153,13 @@ curvenet_status_code evaluateChunks(const curvenet_model *model, int face, const
   for (std::size_t begin = 0; begin < count || (count == 0 && begin == 0); begin += chunk) {
     const std::size_t n = std::min(chunk, count - begin);
     for (std::size_t k = 0; k < n; ++k) in[k] = {uv[2 * (begin + k)], uv[2 * (begin + k) + 1]};
-    Status s = evaluate(model->model, face, std::span(in.data(), n), std::span(result.data(), n), options);
+    const std::span<const Vec2> chunkIn(in.data(), n);
+    const std::span<Point> chunkOut(result.data(), n);
+    Status s;
+    if constexpr (std::is_same_v<Point, SurfacePoint2>)
+      s = model->model.evaluateSecondOrder(face, chunkIn, chunkOut, options);
+    else
+      s = model->model.evaluate(face, chunkIn, chunkOut, options);
     if (s.code != StatusCode::Ok && s.code != StatusCode::OutOfDomain) return report(s, status);
     if (!s.ok() && first.ok()) {
       // The facade numbers points within the chunk; name the batch index.
@@ -276,26 +283,14 @@ curvenet_status_code curvenet_model_set_face_options(curvenet_model *model, int 
 curvenet_status_code curvenet_model_evaluate(const curvenet_model *model, int face, const double *uv, size_t count,
                                              curvenet_point *out, const curvenet_batch_options *batch,
                                              curvenet_status *status) {
-  return guarded(status, [&] {
-    return evaluateChunks<SurfacePoint>(
-        model, face, uv, count, out, batch, status,
-        [](const Model &m, int f, std::span<const Vec2> in, std::span<SurfacePoint> res, const BatchOptions &o) {
-          return m.evaluate(f, in, res, o);
-        });
-  });
+  return guarded(status, [&] { return evaluateChunks<SurfacePoint>(model, face, uv, count, out, batch, status); });
 }
 
 curvenet_status_code curvenet_model_evaluate_second_order(const curvenet_model *model, int face, const double *uv,
                                                           size_t count, curvenet_point2 *out,
                                                           const curvenet_batch_options *batch,
                                                           curvenet_status *status) {
-  return guarded(status, [&] {
-    return evaluateChunks<SurfacePoint2>(
-        model, face, uv, count, out, batch, status,
-        [](const Model &m, int f, std::span<const Vec2> in, std::span<SurfacePoint2> res, const BatchOptions &o) {
-          return m.evaluateSecondOrder(f, in, res, o);
-        });
-  });
+  return guarded(status, [&] { return evaluateChunks<SurfacePoint2>(model, face, uv, count, out, batch, status); });
 }
 
 curvenet_status_code curvenet_model_tessellate(curvenet_model *model, int face, int resolution, int threads,
