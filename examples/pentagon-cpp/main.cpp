@@ -9,7 +9,10 @@ using namespace curvenet;
 
 int main(int argc, char **argv) {
   std::vector<BSplineCurve> loop; // around the unit pentagon, inner control points raised
-  auto corner = [](int i) { return Vec3{std::cos(2 * std::numbers::pi * i / 5), std::sin(2 * std::numbers::pi * i / 5), 0}; };
+  auto corner = [](int i) {
+    const double angle = 2 * std::numbers::pi * i / 5;
+    return Vec3{std::cos(angle), std::sin(angle), 0};
+  };
   for (int k = 0; k < 5; ++k) {
     const Vec3 a = corner(k), b = corner(k + 1), up{0, 0, 0.3};
     loop.push_back(*makeBezier({a, a + (b - a) / 3 + up, b + (a - b) / 3 + up, b}));
