@@ -1,0 +1,268 @@
+/* curvenet/curvenet.h — the C interface of curvenet.
+ *
+ * The same engine as curvenet/curvenet.hpp, for C programs and for other
+ * languages through their C foreign-function interfaces (Python ctypes/cffi,
+ * Rust, C#). Plain C99: opaque handles, status codes, fixed-size error
+ * strings, no C++ in this header.
+ *
+ * Lifecycle. A curvenet_model is a curve network with the surfaces over its
+ * faces. Create it with curvenet_model_from_loop, curvenet_model_build or
+ * curvenet_model_load; release it with curvenet_model_destroy.
+ *
+ * Errors. Every call that can fail returns a curvenet_status_code
+ * (CURVENET_OK = 0 on success) and, when `status` is not NULL, fills it with
+ * the code, the element at fault ("curve 3", "face 2", "point 17") and a
+ * message a person can read. Nothing is thrown or aborted across this
+ * interface. After a failed call the model is as it was before the call.
+ *
+ * Units. Positions are in the units of the input curves. Domain points
+ * (u, v) lie in the face's domain polygon: the regular n-gon with corners on
+ * the unit circle (curvenet_model_domain_corner gives them; see
+ * curvenet/surface.hpp, "Domains"); derivatives are per unit of domain length.
+ *
+ * Threads. Calls taking `const curvenet_model *` may run concurrently on the
+ * same model from any number of threads; calls taking `curvenet_model *`
+ * need exclusive access to it. Different models are independent.
+ *
+ * Linking. The engine is a C++ library: with CMake, a C program links it
+ * with target_link_libraries(app curvenet::engine), which also brings the C++
+ * runtime. Without CMake link libcurvenet, libtbb, libstdc++ and libm.
+ */
+#ifndef CURVENET_CURVENET_H
+#define CURVENET_CURVENET_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- Status ------------------------------------------------------------ */
+
+/* The values equal those of curvenet::StatusCode (curvenet.hpp). */
+typedef enum curvenet_status_code {
+  CURVENET_OK = 0,
+  CURVENET_INVALID_ARGUMENT = 1, /* an argument is wrong: NULL pointer, index out of range, … */
+  CURVENET_INVALID_INPUT = 2,    /* the network, a curve or a file cannot make a surface */
+  CURVENET_OUT_OF_DOMAIN = 3,    /* a domain point outside the face's polygon (its output is NaN) */
+  CURVENET_BUFFER_TOO_SMALL = 4, /* a caller buffer is smaller than the size query said */
+  CURVENET_NO_MESH = 5,          /* mesh requested before curvenet_model_tessellate or after an edit */
+  CURVENET_INTERNAL = 6,         /* an engine invariant broke (a bug: please report it) */
+  CURVENET_OUT_OF_MEMORY = 7
+} curvenet_status_code;
+
+typedef struct curvenet_status {
+  curvenet_status_code code;
+  char element[128]; /* where: "curve 3", "face 0 side 2", "point 17"; may be empty */
+  char message[512]; /* "file: element: reason", NUL-terminated, truncated to fit */
+} curvenet_status;
+
+/* "ok", "invalid-argument", "invalid-input", "out-of-domain",
+ * "buffer-too-small", "no-mesh", "internal", "out-of-memory"; a static string. */
+const char *curvenet_status_code_name(curvenet_status_code code);
+
+/* "MAJOR.MINOR.PATCH" of the linked library; a static string. */
+const char *curvenet_version(void);
+
+/* ---- Options ----------------------------------------------------------- */
+
+/* Values equal those of the C++ enums in curvenet/surface.hpp, which
+ * documents each scheme and option. */
+typedef enum curvenet_scheme {
+  CURVENET_GREGORY_G1 = 0,
+  CURVENET_COMPOSITE_RIBBON = 1,
+  CURVENET_GREGORY_G2 = 2,
+  CURVENET_BEZIER_G1 = 3, /* 4-sided Bézier networks only */
+  CURVENET_COONS_C0 = 4   /* 4-sided Bézier networks only */
+} curvenet_scheme;
+
+typedef enum curvenet_sweepline {
+  CURVENET_SWEEPLINE_AUTO = 0,
+  CURVENET_SWEEPLINE_RADIAL = 1,
+  CURVENET_SWEEPLINE_HERMITE = 2,
+  CURVENET_SWEEPLINE_QUINTIC_HERMITE = 3
+} curvenet_sweepline;
+
+typedef enum curvenet_fence_normals {
+  CURVENET_FENCE_AUTO = 0,
+  CURVENET_FENCE_CURVES = 1,
+  CURVENET_FENCE_REFERENCE = 2
+} curvenet_fence_normals;
+
+typedef enum curvenet_edge_curvature {
+  CURVENET_EDGE_CURVATURE_MASTER_SLAVE = 0,
+  CURVENET_EDGE_CURVATURE_AVERAGING = 1,
+  CURVENET_EDGE_CURVATURE_DIRECT = 2,
+  CURVENET_EDGE_CURVATURE_REFERENCE = 3
+} curvenet_edge_curvature;
+
+typedef struct curvenet_surface_options {
+  curvenet_scheme scheme;
+  curvenet_sweepline sweepline;
+  curvenet_fence_normals fence_normals;
+  curvenet_edge_curvature edge_curvature; /* gregory-g2 only */
+} curvenet_surface_options;
+
+/* Fills the defaults: gregory-g1, automatic sweepline and fences, direct
+ * edge curvature. */
+void curvenet_surface_options_init(curvenet_surface_options *options);
+
+/* How a batch evaluation spreads its work (see BatchOptions in curvenet.hpp). */
+typedef struct curvenet_batch_options {
+  int threads;               /* 0 = automatic, 1 = serial, k = at most k threads */
+  size_t parallel_threshold; /* with threads = 0: batches this large run in parallel */
+  double step;               /* second-order difference step, [1e-8, 1e-2] (not gregory-g2) */
+} curvenet_batch_options;
+
+/* Fills the defaults: threads 0, threshold 4096, step 1e-5. */
+void curvenet_batch_options_init(curvenet_batch_options *options);
+
+/* ---- Network input ----------------------------------------------------- */
+
+/* A clamped B-spline curve: knot_count = point_count + degree + 1, points as
+ * x y z triples (3 * point_count doubles), weights NULL for a polynomial
+ * curve or point_count positive values. A Bézier curve of degree p has
+ * p + 1 points and knots {0 … 0, 1 … 1} (p + 1 of each). The model copies the
+ * data; the arrays need live only during the call. */
+typedef struct curvenet_curve {
+  int degree; /* 1 … 15 */
+  const double *knots;
+  size_t knot_count;
+  const double *points;
+  size_t point_count;
+  const double *weights;
+} curvenet_curve;
+
+/* One side of a face loop: curve `curve` from parameter `from` to `to`
+ * (from > to runs the curve backwards). */
+typedef struct curvenet_side {
+  int curve;
+  double from, to;
+} curvenet_side;
+
+/* A face: a closed loop of 2 … 8 sides; side k ends where side k + 1 starts. */
+typedef struct curvenet_face {
+  const curvenet_side *sides;
+  size_t side_count;
+} curvenet_face;
+
+typedef struct curvenet_model curvenet_model;
+
+/* One face bounded by `curves` in loop order, each used whole from start to
+ * end (curve k ends where curve k + 1 starts). `options` NULL = defaults.
+ * On success *model receives a new model; on failure NULL. Cost: linear in
+ * the curves. */
+curvenet_status_code curvenet_model_from_loop(const curvenet_curve *curves, size_t curve_count,
+                                              const curvenet_surface_options *options, curvenet_model **model,
+                                              curvenet_status *status);
+
+/* A network of curves and faces (curve indices refer to `curves`). The
+ * relative vertex tolerance is 1e-7 of the bounding-box diagonal. */
+curvenet_status_code curvenet_model_build(const curvenet_curve *curves, size_t curve_count,
+                                          const curvenet_face *faces, size_t face_count,
+                                          const curvenet_surface_options *options, curvenet_model **model,
+                                          curvenet_status *status);
+
+/* "builtin:NAME" or a network file (.json native format, .lop loop file). */
+curvenet_status_code curvenet_model_load(const char *input, const curvenet_surface_options *options,
+                                         curvenet_model **model, curvenet_status *status);
+
+/* Releases the model; NULL is allowed. */
+void curvenet_model_destroy(curvenet_model *model);
+
+/* ---- Inspection (cheap) ------------------------------------------------ */
+
+int curvenet_model_face_count(const curvenet_model *model);
+int curvenet_model_curve_count(const curvenet_model *model);
+/* Sides of face `face`'s domain polygon (4 for a 2-sided face); 0 for a bad index. */
+int curvenet_model_domain_sides(const curvenet_model *model, int face);
+/* Corner `corner` (modulo the side count) of the face's domain into uv[0], uv[1]. */
+curvenet_status_code curvenet_model_domain_corner(const curvenet_model *model, int face, int corner, double uv[2],
+                                                  curvenet_status *status);
+
+/* ---- Options per face -------------------------------------------------- */
+
+#define CURVENET_ALL_FACES (-1)
+
+/* Sets the options of face `face` (or every face with CURVENET_ALL_FACES)
+ * and rebuilds the surfaces that changed: one surface build over the whole
+ * network per new option set (see Model in curvenet.hpp for what per-face
+ * schemes mean at the borders between them). Clears the kept mesh. */
+curvenet_status_code curvenet_model_set_face_options(curvenet_model *model, int face,
+                                                     const curvenet_surface_options *options,
+                                                     curvenet_status *status);
+
+/* ---- Evaluation -------------------------------------------------------- */
+
+/* A surface point with exact first derivatives and the unit normal. */
+typedef struct curvenet_point {
+  double point[3], du[3], dv[3], normal[3];
+} curvenet_point;
+
+/* With second derivatives too. */
+typedef struct curvenet_point2 {
+  double point[3], du[3], dv[3], normal[3];
+  double duu[3], duv[3], dvv[3];
+} curvenet_point2;
+
+/* Evaluates face `face` at `count` domain points uv[2k], uv[2k+1] into
+ * out[k]. Points outside the domain get NaN and the call returns
+ * CURVENET_OUT_OF_DOMAIN naming the first; the rest are evaluated. `batch`
+ * NULL = defaults. Cost: one patch evaluation per point (O(n) ribbon
+ * evaluations), spread over threads for large batches. */
+curvenet_status_code curvenet_model_evaluate(const curvenet_model *model, int face, const double *uv, size_t count,
+                                             curvenet_point *out, const curvenet_batch_options *batch,
+                                             curvenet_status *status);
+
+/* As curvenet_model_evaluate with second derivatives: exact for gregory-g2,
+ * 9 first-order evaluations with step batch->step for the other schemes. */
+curvenet_status_code curvenet_model_evaluate_second_order(const curvenet_model *model, int face, const double *uv,
+                                                          size_t count, curvenet_point2 *out,
+                                                          const curvenet_batch_options *batch,
+                                                          curvenet_status *status);
+
+/* ---- Tessellation ------------------------------------------------------ */
+
+/* Tessellates the whole network (face = CURVENET_ALL_FACES; one watertight
+ * mesh) or one face, with `resolution` ≥ 1 intervals per segment, on
+ * `threads` threads (0 = all cores), and keeps the mesh in the model. The
+ * sizes go to *vertex_count and *triangle_count (either may be NULL): size
+ * the buffers of curvenet_model_copy_mesh with them. Cost: one
+ * whole-network tessellation per distinct option set; cached per
+ * resolution, so further faces at the same resolution only copy. */
+curvenet_status_code curvenet_model_tessellate(curvenet_model *model, int face, int resolution, int threads,
+                                               size_t *vertex_count, size_t *triangle_count,
+                                               curvenet_status *status);
+
+/* Copies the kept mesh: positions and normals as x y z triples (capacities
+ * in vertices), triangles as three vertex indices each, counter-clockwise
+ * seen from the normal side (capacity in triangles). `normals` NULL (or a
+ * capacity of 0) skips the normals. */
+curvenet_status_code curvenet_model_copy_mesh(const curvenet_model *model, double *positions,
+                                              size_t position_capacity, double *normals, size_t normal_capacity,
+                                              uint32_t *triangles, size_t triangle_capacity,
+                                              curvenet_status *status);
+
+/* Writes the kept mesh as OBJ or PLY by the extension of `path`, atomically. */
+curvenet_status_code curvenet_model_write_mesh(const curvenet_model *model, const char *path,
+                                               curvenet_status *status);
+
+/* ---- Editing ----------------------------------------------------------- */
+
+/* Replaces curve `curve` and rebuilds network and surfaces (cost: a full
+ * rebuild, linear in the segments, whatever moved; figures in the README).
+ * Clears the kept mesh. Face and curve numbers stay. */
+curvenet_status_code curvenet_model_set_curve(curvenet_model *model, int curve, const curvenet_curve *replacement,
+                                              curvenet_status *status);
+
+/* New control points (x y z triples, the curve's current count) for curve
+ * `curve`, keeping degree, knots and weights; rebuilds as above. */
+curvenet_status_code curvenet_model_set_control_points(curvenet_model *model, int curve, const double *points,
+                                                       size_t point_count, curvenet_status *status);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
+
+#endif /* CURVENET_CURVENET_H */

@@ -1,0 +1,357 @@
+// The C interface (curvenet/curvenet.h): a thin translation onto the Model
+// facade of curvenet/curvenet.hpp. This file only converts C arrays and
+// enums to the C++ types and Status values back; every check and every
+// computation lives in the facade.
+#include "curvenet/curvenet.h"
+
+#include <algorithm>
+#include <cstring>
+#include <new>
+#include <type_traits>
+#include <vector>
+
+#include "curvenet/curvenet.hpp"
+
+using namespace curvenet;
+
+struct curvenet_model {
+  Model model;
+};
+
+static_assert(static_cast<int>(StatusCode::OutOfMemory) == CURVENET_OUT_OF_MEMORY &&
+              static_cast<int>(StatusCode::NoMesh) == CURVENET_NO_MESH);
+static_assert(static_cast<int>(Scheme::CoonsC0) == CURVENET_COONS_C0 &&
+              static_cast<int>(Sweepline::QuinticHermite) == CURVENET_SWEEPLINE_QUINTIC_HERMITE &&
+              static_cast<int>(FenceNormals::Reference) == CURVENET_FENCE_REFERENCE &&
+              static_cast<int>(EdgeCurvature::Reference) == CURVENET_EDGE_CURVATURE_REFERENCE);
+
+namespace {
+
+void copyTruncated(char *to, std::size_t capacity, const std::string &from) {
+  const std::size_t n = std::min(from.size(), capacity - 1);
+  std::memcpy(to, from.data(), n);
+  to[n] = '\0';
+}
+
+/// Fills the caller's status (if any) and returns the code.
+curvenet_status_code report(const Status &status, curvenet_status *out) {
+  const auto code = static_cast<curvenet_status_code>(status.code);
+  if (out) {
+    out->code = code;
+    copyTruncated(out->element, sizeof out->element, status.element);
+    copyTruncated(out->message, sizeof out->message, status.ok() ? std::string() : status.toString());
+  }
+  return code;
+}
+
+curvenet_status_code fail(StatusCode code, const std::string &element, const std::string &message,
+                          curvenet_status *out) {
+  return report(Status{code, {}, element, message}, out);
+}
+
+curvenet_status_code nullArgument(const char *name, curvenet_status *out) {
+  return fail(StatusCode::InvalidArgument, name, "must not be NULL", out);
+}
+
+/// Runs `body` (which returns a curvenet_status_code) and maps what the C
+/// layer's own allocations may throw; the facade itself does not throw.
+template <class Body>
+curvenet_status_code guarded(curvenet_status *status, Body &&body) noexcept {
+  try {
+    return body();
+  } catch (const std::bad_alloc &) {
+    return fail(StatusCode::OutOfMemory, {}, "out of memory", status);
+  } catch (...) {
+    return fail(StatusCode::Internal, {}, "unexpected exception in the C interface", status);
+  }
+}
+
+SurfaceOptions toOptions(const curvenet_surface_options *options) {
+  if (!options) return {};
+  return {static_cast<Scheme>(options->scheme), static_cast<Sweepline>(options->sweepline),
+          static_cast<FenceNormals>(options->fence_normals), static_cast<EdgeCurvature>(options->edge_curvature)};
+}
+
+/// Enum values outside their range would reach the engine as invalid enums.
+bool validOptions(const curvenet_surface_options *o) {
+  return !o || (o->scheme >= CURVENET_GREGORY_G1 && o->scheme <= CURVENET_COONS_C0 &&
+                o->sweepline >= CURVENET_SWEEPLINE_AUTO && o->sweepline <= CURVENET_SWEEPLINE_QUINTIC_HERMITE &&
+                o->fence_normals >= CURVENET_FENCE_AUTO && o->fence_normals <= CURVENET_FENCE_REFERENCE &&
+                o->edge_curvature >= CURVENET_EDGE_CURVATURE_MASTER_SLAVE &&
+                o->edge_curvature <= CURVENET_EDGE_CURVATURE_REFERENCE);
+}
+
+std::vector<Vec3> toPoints(const double *xyz, std::size_t count) {
+  std::vector<Vec3> points(count);
+  for (std::size_t k = 0; k < count; ++k) points[k] = {xyz[3 * k], xyz[3 * k + 1], xyz[3 * k + 2]};
+  return points;
+}
+
+void fromVec(const Vec3 &v, double out[3]) {
+  out[0] = v.x;
+  out[1] = v.y;
+  out[2] = v.z;
+}
+
+void fromPoint(const SurfacePoint &p, curvenet_point &out) {
+  fromVec(p.point, out.point);
+  fromVec(p.du, out.du);
+  fromVec(p.dv, out.dv);
+  fromVec(p.normal, out.normal);
+}
+
+void fromPoint(const SurfacePoint2 &p, curvenet_point2 &out) {
+  fromVec(p.point, out.point);
+  fromVec(p.du, out.du);
+  fromVec(p.dv, out.dv);
+  fromVec(p.normal, out.normal);
+  fromVec(p.duu, out.duu);
+  fromVec(p.duv, out.duv);
+  fromVec(p.dvv, out.dvv);
+}
+
+/// A C curve as a BSplineCurve (the facade validates the data).
+Result<BSplineCurve> toCurve(const curvenet_curve &c, int index) {
+  const std::string element = "curve " + std::to_string(index);
+  if ((!c.knots && c.knot_count) || (!c.points && c.point_count))
+    return Status{StatusCode::InvalidArgument, {}, element, "knots or points are NULL"};
+  std::vector<double> weights;
+  if (c.weights) weights.assign(c.weights, c.weights + c.point_count);
+  Result<BSplineCurve> curve =
+      makeCurve(c.degree, {c.knots, c.knots + c.knot_count}, toPoints(c.points, c.point_count), std::move(weights));
+  if (!curve.ok()) {
+    Status status = curve.status();
+    status.element = element;
+    return status;
+  }
+  return curve;
+}
+
+curvenet_status_code adopt(Result<Model> model, curvenet_model **out, curvenet_status *status) {
+  if (!model) return report(model.status(), status);
+  *out = new curvenet_model{std::move(model).value()};
+  return report({}, status);
+}
+
+/// Evaluates in chunks: the C arrays are converted to Vec2 / SurfacePoint
+/// through buffers of bounded size, each chunk evaluated as one facade batch
+/// (first or second order by the point type).
+template <class Point, class CPoint>
+curvenet_status_code evaluateChunks(const curvenet_model *model, int face, const double *uv, std::size_t count,
+                                    CPoint *out, const curvenet_batch_options *batch, curvenet_status *status) {
+  if (!model) return nullArgument("model", status);
+  if (count && (!uv || !out)) return nullArgument(!uv ? "uv" : "out", status);
+  BatchOptions options;
+  if (batch) options = {batch->threads, batch->parallel_threshold, batch->step};
+  // With the automatic policy a whole batch above the threshold is parallel;
+  // chunks must not fall below it and turn serial.
+  if (options.threads == 0 && count >= options.parallelThreshold) options.parallelThreshold = 0;
+  constexpr std::size_t chunk = 1 << 16;
+  std::vector<Vec2> in(std::min(count, chunk));
+  std::vector<Point> result(in.size());
+  Status first;
+  for (std::size_t begin = 0; begin < count || (count == 0 && begin == 0); begin += chunk) {
+    const std::size_t n = std::min(chunk, count - begin);
+    for (std::size_t k = 0; k < n; ++k) in[k] = {uv[2 * (begin + k)], uv[2 * (begin + k) + 1]};
+    const std::span<const Vec2> chunkIn(in.data(), n);
+    const std::span<Point> chunkOut(result.data(), n);
+    Status s;
+    if constexpr (std::is_same_v<Point, SurfacePoint2>)
+      s = model->model.evaluateSecondOrder(face, chunkIn, chunkOut, options);
+    else
+      s = model->model.evaluate(face, chunkIn, chunkOut, options);
+    if (s.code != StatusCode::Ok && s.code != StatusCode::OutOfDomain) return report(s, status);
+    if (!s.ok() && first.ok()) {
+      // The facade numbers points within the chunk; name the batch index.
+      first = s;
+      const std::size_t local = std::stoul(s.element.substr(s.element.find(' ') + 1));
+      first.element = "point " + std::to_string(begin + local);
+      first.message = "lies outside the domain of face " + std::to_string(face) + "; such points are set to NaN";
+    }
+    for (std::size_t k = 0; k < n; ++k) fromPoint(result[k], out[begin + k]);
+    if (count == 0) break;
+  }
+  return report(first, status);
+}
+
+} // namespace
+
+extern "C" {
+
+const char *curvenet_status_code_name(curvenet_status_code code) {
+  return statusCodeName(static_cast<StatusCode>(code));
+}
+
+const char *curvenet_version(void) { return versionString(); }
+
+void curvenet_surface_options_init(curvenet_surface_options *options) {
+  if (!options) return;
+  const SurfaceOptions d;
+  *options = {static_cast<curvenet_scheme>(d.scheme), static_cast<curvenet_sweepline>(d.sweepline),
+              static_cast<curvenet_fence_normals>(d.fenceNormals),
+              static_cast<curvenet_edge_curvature>(d.edgeCurvature)};
+}
+
+void curvenet_batch_options_init(curvenet_batch_options *options) {
+  if (!options) return;
+  const BatchOptions d;
+  *options = {d.threads, d.parallelThreshold, d.step};
+}
+
+curvenet_status_code curvenet_model_build(const curvenet_curve *curves, size_t curve_count,
+                                          const curvenet_face *faces, size_t face_count,
+                                          const curvenet_surface_options *options, curvenet_model **model,
+                                          curvenet_status *status) {
+  if (!model) return nullArgument("model", status);
+  *model = nullptr;
+  if (curve_count && !curves) return nullArgument("curves", status);
+  if (face_count && !faces) return nullArgument("faces", status);
+  if (!validOptions(options)) return fail(StatusCode::InvalidArgument, "options", "enum value out of range", status);
+  return guarded(status, [&] {
+    NetworkDescription description;
+    description.name = "network";
+    for (std::size_t c = 0; c < curve_count; ++c) {
+      Result<BSplineCurve> curve = toCurve(curves[c], static_cast<int>(c));
+      if (!curve) return report(curve.status(), status);
+      description.curves.push_back(std::move(curve).value());
+    }
+    for (std::size_t f = 0; f < face_count; ++f) {
+      if (faces[f].side_count && !faces[f].sides)
+        return fail(StatusCode::InvalidArgument, "face " + std::to_string(f), "sides are NULL", status);
+      FaceDescription face;
+      for (std::size_t k = 0; k < faces[f].side_count; ++k)
+        face.sides.push_back({faces[f].sides[k].curve, faces[f].sides[k].from, faces[f].sides[k].to});
+      description.faces.push_back(std::move(face));
+    }
+    return adopt(Model::build(std::move(description), toOptions(options)), model, status);
+  });
+}
+
+curvenet_status_code curvenet_model_from_loop(const curvenet_curve *curves, size_t curve_count,
+                                              const curvenet_surface_options *options, curvenet_model **model,
+                                              curvenet_status *status) {
+  if (!model) return nullArgument("model", status);
+  *model = nullptr;
+  if (curve_count && !curves) return nullArgument("curves", status);
+  if (!validOptions(options)) return fail(StatusCode::InvalidArgument, "options", "enum value out of range", status);
+  return guarded(status, [&] {
+    std::vector<BSplineCurve> loop;
+    for (std::size_t c = 0; c < curve_count; ++c) {
+      Result<BSplineCurve> curve = toCurve(curves[c], static_cast<int>(c));
+      if (!curve) return report(curve.status(), status);
+      loop.push_back(std::move(curve).value());
+    }
+    return adopt(Model::fromLoop(std::move(loop), toOptions(options)), model, status);
+  });
+}
+
+curvenet_status_code curvenet_model_load(const char *input, const curvenet_surface_options *options,
+                                         curvenet_model **model, curvenet_status *status) {
+  if (!model) return nullArgument("model", status);
+  *model = nullptr;
+  if (!input) return nullArgument("input", status);
+  if (!validOptions(options)) return fail(StatusCode::InvalidArgument, "options", "enum value out of range", status);
+  return guarded(status, [&] { return adopt(Model::load(input, toOptions(options)), model, status); });
+}
+
+void curvenet_model_destroy(curvenet_model *model) { delete model; }
+
+int curvenet_model_face_count(const curvenet_model *model) { return model ? model->model.faceCount() : 0; }
+int curvenet_model_curve_count(const curvenet_model *model) { return model ? model->model.curveCount() : 0; }
+int curvenet_model_domain_sides(const curvenet_model *model, int face) {
+  return model ? model->model.domainSides(face) : 0;
+}
+
+curvenet_status_code curvenet_model_domain_corner(const curvenet_model *model, int face, int corner, double uv[2],
+                                                  curvenet_status *status) {
+  if (!model || !uv) return nullArgument(!model ? "model" : "uv", status);
+  const Result<Vec2> c = model->model.domainCorner(face, corner);
+  if (!c) return report(c.status(), status);
+  uv[0] = c->x;
+  uv[1] = c->y;
+  return report({}, status);
+}
+
+curvenet_status_code curvenet_model_set_face_options(curvenet_model *model, int face,
+                                                     const curvenet_surface_options *options,
+                                                     curvenet_status *status) {
+  if (!model || !options) return nullArgument(!model ? "model" : "options", status);
+  if (!validOptions(options)) return fail(StatusCode::InvalidArgument, "options", "enum value out of range", status);
+  return report(model->model.setFaceOptions(face, toOptions(options)), status);
+}
+
+curvenet_status_code curvenet_model_evaluate(const curvenet_model *model, int face, const double *uv, size_t count,
+                                             curvenet_point *out, const curvenet_batch_options *batch,
+                                             curvenet_status *status) {
+  return guarded(status, [&] { return evaluateChunks<SurfacePoint>(model, face, uv, count, out, batch, status); });
+}
+
+curvenet_status_code curvenet_model_evaluate_second_order(const curvenet_model *model, int face, const double *uv,
+                                                          size_t count, curvenet_point2 *out,
+                                                          const curvenet_batch_options *batch,
+                                                          curvenet_status *status) {
+  return guarded(status, [&] { return evaluateChunks<SurfacePoint2>(model, face, uv, count, out, batch, status); });
+}
+
+curvenet_status_code curvenet_model_tessellate(curvenet_model *model, int face, int resolution, int threads,
+                                               size_t *vertex_count, size_t *triangle_count,
+                                               curvenet_status *status) {
+  if (!model) return nullArgument("model", status);
+  TessellationOptions options;
+  options.resolution = resolution;
+  options.threads = threads;
+  const Result<MeshSize> size = model->model.tessellate(options, face);
+  if (!size) return report(size.status(), status);
+  if (vertex_count) *vertex_count = size->vertices;
+  if (triangle_count) *triangle_count = size->triangles;
+  return report({}, status);
+}
+
+curvenet_status_code curvenet_model_copy_mesh(const curvenet_model *model, double *positions,
+                                              size_t position_capacity, double *normals, size_t normal_capacity,
+                                              uint32_t *triangles, size_t triangle_capacity,
+                                              curvenet_status *status) {
+  if (!model) return nullArgument("model", status);
+  if (!positions || !triangles) return nullArgument(!positions ? "positions" : "triangles", status);
+  return guarded(status, [&] {
+    // Staging buffers of the claimed capacities (at most the mesh's sizes):
+    // the facade's copyMesh then judges whether they suffice.
+    const Mesh &mesh = model->model.mesh();
+    std::vector<Vec3> p(std::min(position_capacity, mesh.positions.size()));
+    std::vector<Vec3> n(normals ? std::min(normal_capacity, mesh.normals.size()) : 0);
+    std::vector<std::array<std::uint32_t, 3>> t(std::min(triangle_capacity, mesh.triangles.size()));
+    const Status s = model->model.copyMesh(p, normals ? std::span<Vec3>(n) : std::span<Vec3>(), t);
+    if (!s.ok()) return report(s, status);
+    for (std::size_t k = 0; k < p.size(); ++k) fromVec(p[k], positions + 3 * k);
+    for (std::size_t k = 0; k < n.size(); ++k) fromVec(n[k], normals + 3 * k);
+    for (std::size_t k = 0; k < t.size(); ++k) std::copy(t[k].begin(), t[k].end(), triangles + 3 * k);
+    return report({}, status);
+  });
+}
+
+curvenet_status_code curvenet_model_write_mesh(const curvenet_model *model, const char *path,
+                                               curvenet_status *status) {
+  if (!model || !path) return nullArgument(!model ? "model" : "path", status);
+  return guarded(status, [&] { return report(model->model.writeMesh(path), status); });
+}
+
+curvenet_status_code curvenet_model_set_curve(curvenet_model *model, int curve, const curvenet_curve *replacement,
+                                              curvenet_status *status) {
+  if (!model || !replacement) return nullArgument(!model ? "model" : "replacement", status);
+  return guarded(status, [&] {
+    Result<BSplineCurve> c = toCurve(*replacement, curve);
+    if (!c) return report(c.status(), status);
+    return report(model->model.setCurve(curve, std::move(c).value()), status);
+  });
+}
+
+curvenet_status_code curvenet_model_set_control_points(curvenet_model *model, int curve, const double *points,
+                                                       size_t point_count, curvenet_status *status) {
+  if (!model || (!points && point_count)) return nullArgument(!model ? "model" : "points", status);
+  return guarded(status, [&] {
+    const std::vector<Vec3> p = toPoints(points, point_count);
+    return report(model->model.setControlPoints(curve, p), status);
+  });
+}
+
+} // extern "C"

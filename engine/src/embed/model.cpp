@@ -1,0 +1,466 @@
+// The embedding facade (curvenet/curvenet.hpp): a Model over the public
+// Network / Surface / tessellate API. Exceptions from the layers below are
+// caught here, at the API edge, and turned into Status values.
+#include "curvenet/curvenet.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <new>
+#include <unordered_map>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "curvenet/error.hpp"
+#include "curvenet/io.hpp"
+
+namespace curvenet {
+inline namespace v1 {
+
+namespace {
+
+Status failure(StatusCode code, std::string element, std::string message) {
+  return {code, {}, std::move(element), std::move(message)};
+}
+
+/// Runs `body` and maps what it throws to a Status; R is Status or Result<T>,
+/// both constructible from a failed Status.
+template <class R, class Body>
+R guarded(Body &&body) noexcept {
+  try {
+    return body();
+  } catch (const InputError &e) {
+    return Status{StatusCode::InvalidInput, e.file(), e.element(), e.reason()};
+  } catch (const InternalError &e) {
+    return failure(StatusCode::Internal, {}, e.what());
+  } catch (const std::bad_alloc &) {
+    return failure(StatusCode::OutOfMemory, {}, "out of memory");
+  } catch (const std::exception &e) {
+    return failure(StatusCode::Internal, {}, e.what());
+  } catch (...) {
+    return failure(StatusCode::Internal, {}, "unknown exception");
+  }
+}
+
+bool sameOptions(const SurfaceOptions &a, const SurfaceOptions &b) {
+  return a.scheme == b.scheme && a.sweepline == b.sweepline && a.fenceNormals == b.fenceNormals &&
+         a.edgeCurvature == b.edgeCurvature;
+}
+
+std::string faceName(int face) { return "face " + std::to_string(face); }
+
+/// The corners of a face's domain polygon, counter-clockwise, for the
+/// inside test; n ≤ 8 sides.
+struct DomainPolygon {
+  std::array<Vec2, 9> corners{};
+  int sides = 0;
+
+  DomainPolygon(const Surface &surface, int face) : sides(surface.domainSides(face)) {
+    for (int i = 0; i <= sides; ++i) corners[i] = surface.domainCorner(face, i);
+  }
+  /// Inside or on the boundary, with a tolerance of 1e-9 of the circumradius
+  /// so that points computed on a side (e.g. by interpolating corners) pass.
+  bool contains(const Vec2 &p) const {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) return false;
+    for (int i = 0; i < sides; ++i) {
+      const Vec2 edge = corners[i + 1] - corners[i];
+      if (cross(edge, p - corners[i]) < -1e-9 * norm(edge)) return false;
+    }
+    return true;
+  }
+};
+
+template <class Point>
+Point nanPoint() {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const Vec3 v{nan, nan, nan};
+  Point p;
+  p.point = p.du = p.dv = p.normal = v;
+  if constexpr (std::is_same_v<Point, SurfacePoint2>) p.duu = p.duv = p.dvv = v;
+  return p;
+}
+
+} // namespace
+
+const char *versionString() { return CURVENET_VERSION_STRING; }
+
+const char *statusCodeName(StatusCode code) {
+  switch (code) {
+  case StatusCode::Ok: return "ok";
+  case StatusCode::InvalidArgument: return "invalid-argument";
+  case StatusCode::InvalidInput: return "invalid-input";
+  case StatusCode::OutOfDomain: return "out-of-domain";
+  case StatusCode::BufferTooSmall: return "buffer-too-small";
+  case StatusCode::NoMesh: return "no-mesh";
+  case StatusCode::Internal: return "internal";
+  case StatusCode::OutOfMemory: return "out-of-memory";
+  }
+  return "unknown";
+}
+
+std::string Status::toString() const {
+  if (ok()) return "ok";
+  std::string s;
+  if (!file.empty()) s += file + ": ";
+  if (!element.empty()) s += element + ": ";
+  return s + message;
+}
+
+Result<BSplineCurve> makeCurve(int degree, std::vector<double> knots, std::vector<Vec3> controlPoints,
+                               std::vector<double> weights) {
+  return guarded<Result<BSplineCurve>>([&]() -> Result<BSplineCurve> {
+    return BSplineCurve(degree, std::move(knots), std::move(controlPoints), std::move(weights));
+  });
+}
+
+Result<BSplineCurve> makeBezier(std::vector<Vec3> controlPoints) {
+  if (controlPoints.size() < 2)
+    return failure(StatusCode::InvalidInput, "curve", "a Bézier curve needs at least 2 control points");
+  return guarded<Result<BSplineCurve>>(
+      [&]() -> Result<BSplineCurve> { return BSplineCurve::bezier(std::move(controlPoints)); });
+}
+
+// ---------------------------------------------------------------------------
+
+struct Model::Impl {
+  struct Group {
+    SurfaceOptions options;
+    Surface surface;
+  };
+  NetworkDescription description;
+  Network network;
+  std::vector<SurfaceOptions> faceOptions;
+  std::vector<Group> groups;
+  std::vector<int> faceGroup;
+  /// The mesh copyMesh/mesh() hand out, and the whole-network tessellation
+  /// it was cut from (kept so one-face calls reuse it).
+  Mesh mesh;
+  bool hasMesh = false;
+  std::optional<Mesh> whole;
+  TessellationOptions wholeOptions;
+
+  /// Network and surfaces for `description` with per-face `options`. Groups
+  /// of `reuse` (same network) whose options recur are kept, not rebuilt.
+  static std::unique_ptr<Impl> assemble(NetworkDescription description, std::vector<SurfaceOptions> options,
+                                        const Impl *reuse) {
+    auto impl = std::make_unique<Impl>();
+    impl->network = reuse ? reuse->network : Network::build(description);
+    impl->description = std::move(description);
+    const int faces = static_cast<int>(impl->network.faces().size());
+    CURVENET_CHECK(static_cast<int>(options.size()) == faces, "options for every face");
+    impl->faceOptions = std::move(options);
+    for (int f = 0; f < faces; ++f) {
+      const SurfaceOptions &o = impl->faceOptions[f];
+      auto same = [&](const Group &g) { return sameOptions(g.options, o); };
+      auto it = std::find_if(impl->groups.begin(), impl->groups.end(), same);
+      if (it == impl->groups.end()) {
+        const Group *old = nullptr;
+        if (reuse)
+          if (auto r = std::find_if(reuse->groups.begin(), reuse->groups.end(), same); r != reuse->groups.end())
+            old = &*r;
+        impl->groups.push_back({o, old ? old->surface : Surface::build(impl->network, o)});
+        it = impl->groups.end() - 1;
+      }
+      impl->faceGroup.push_back(static_cast<int>(it - impl->groups.begin()));
+    }
+    if (faces == 0) impl->groups.push_back({SurfaceOptions{}, Surface::build(impl->network, {})});
+    return impl;
+  }
+
+  const Surface &surfaceOf(int face) const { return groups[faceGroup[face]].surface; }
+  bool validFace(int face) const { return face >= 0 && face < static_cast<int>(faceGroup.size()); }
+
+  /// The whole-network mesh with every face evaluated by its own group. All
+  /// groups share one vertex layout (it depends on the topology and the
+  /// resolution only), so each vertex is taken from the group of the face
+  /// the tessellator evaluated it in.
+  Mesh tessellateWhole(TessellationOptions options) const {
+    if (groups.size() == 1) return curvenet::tessellate(groups[0].surface, options);
+    const bool wanted = options.recordDomainPoints;
+    options.recordDomainPoints = true;
+    std::vector<Mesh> meshes;
+    for (const Group &g : groups) meshes.push_back(curvenet::tessellate(g.surface, options));
+    Mesh merged = std::move(meshes[0]);
+    for (size_t g = 1; g < meshes.size(); ++g)
+      CURVENET_CHECK(meshes[g].positions.size() == merged.positions.size() &&
+                         meshes[g].triangles == merged.triangles,
+                     "every scheme tessellates a network with one vertex layout");
+    for (size_t v = 0; v < merged.positions.size(); ++v) {
+      const int f = merged.domainPoints[v].face;
+      const int g = f < 0 ? 0 : faceGroup[f];
+      if (g == 0) continue;
+      merged.positions[v] = meshes[g].positions[v];
+      merged.normals[v] = meshes[g].normals[v];
+    }
+    if (!wanted) merged.domainPoints.clear();
+    return merged;
+  }
+
+  /// Face f's triangles of `whole`, with the vertices they use renumbered in
+  /// order of first use.
+  static Mesh cutFace(const Mesh &whole, int f) {
+    Mesh out;
+    std::unordered_map<std::uint32_t, std::uint32_t> local;
+    auto vertex = [&](std::uint32_t v) {
+      auto [it, inserted] = local.try_emplace(v, static_cast<std::uint32_t>(out.positions.size()));
+      if (inserted) {
+        out.positions.push_back(whole.positions[v]);
+        if (!whole.normals.empty()) out.normals.push_back(whole.normals[v]);
+        if (!whole.domainPoints.empty()) out.domainPoints.push_back(whole.domainPoints[v]);
+      }
+      return it->second;
+    };
+    for (std::uint32_t t = whole.faceTriangleStart[f]; t < whole.faceTriangleStart[f + 1]; ++t) {
+      const auto &tri = whole.triangles[t];
+      out.triangles.push_back({vertex(tri[0]), vertex(tri[1]), vertex(tri[2])});
+    }
+    out.faceTriangleStart = {0, static_cast<std::uint32_t>(out.triangles.size())};
+    return out;
+  }
+
+  /// Applies `one` to every point of a batch, serially or over TBB by the
+  /// batch policy; points outside the domain get NaN.
+  template <class Point, class One>
+  Status batch(int face, std::span<const Vec2> uv, std::span<Point> out, const BatchOptions &options,
+               One &&one) const {
+    if (!validFace(face)) return failure(StatusCode::InvalidArgument, faceName(face), "no such face");
+    if (uv.size() != out.size())
+      return failure(StatusCode::InvalidArgument, "output",
+                     "holds " + std::to_string(out.size()) + " points for " + std::to_string(uv.size()) + " inputs");
+    if (options.threads < 0) return failure(StatusCode::InvalidArgument, "threads", "must be ≥ 0");
+    const Surface &surface = surfaceOf(face);
+    const DomainPolygon polygon(surface, face);
+    auto range = [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k)
+        out[k] = polygon.contains(uv[k]) ? one(surface, uv[k]) : nanPoint<Point>();
+    };
+    const std::size_t n = uv.size();
+    const bool serial = options.threads == 1 || (options.threads == 0 && n < options.parallelThreshold);
+    if (serial) {
+      range(0, n);
+    } else {
+      // Each point is written by one task only, so the output is the same for
+      // any thread count; the grain keeps task overhead below 1%.
+      tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+      arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024),
+                          [&](const tbb::blocked_range<std::size_t> &r) { range(r.begin(), r.end()); });
+      });
+    }
+    std::size_t outside = 0, first = n;
+    for (std::size_t k = 0; k < n; ++k)
+      if (!polygon.contains(uv[k])) {
+        ++outside;
+        first = std::min(first, k);
+      }
+    if (outside)
+      return failure(StatusCode::OutOfDomain, "point " + std::to_string(first),
+                     std::to_string(outside) + " of " + std::to_string(n) + " points lie outside the domain of " +
+                         faceName(face) + " (set to NaN)");
+    return {};
+  }
+};
+
+Model::Model(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Model::Model(Model &&) noexcept = default;
+Model &Model::operator=(Model &&) noexcept = default;
+Model::~Model() = default;
+
+Result<Model> Model::build(NetworkDescription description, const SurfaceOptions &options) {
+  return guarded<Result<Model>>([&]() -> Result<Model> {
+    const std::size_t faces = description.faces.size();
+    return Model(Impl::assemble(std::move(description), std::vector<SurfaceOptions>(faces, options), nullptr));
+  });
+}
+
+Result<Model> Model::fromLoop(std::vector<BSplineCurve> curves, const SurfaceOptions &options) {
+  NetworkDescription description;
+  description.name = "loop";
+  FaceDescription face;
+  for (std::size_t k = 0; k < curves.size(); ++k)
+    face.sides.push_back({static_cast<int>(k), curves[k].domainStart(), curves[k].domainEnd()});
+  description.curves = std::move(curves);
+  description.faces.push_back(std::move(face));
+  return build(std::move(description), options);
+}
+
+Result<Model> Model::load(const std::string &input, const SurfaceOptions &options) {
+  auto description = guarded<Result<NetworkDescription>>(
+      [&]() -> Result<NetworkDescription> { return loadNetworkInput(input); });
+  if (!description) return description.status();
+  return build(std::move(description).value(), options);
+}
+
+int Model::faceCount() const { return static_cast<int>(impl_->faceGroup.size()); }
+int Model::curveCount() const { return static_cast<int>(impl_->description.curves.size()); }
+
+int Model::domainSides(int face) const {
+  return impl_->validFace(face) ? impl_->surfaceOf(face).domainSides(face) : 0;
+}
+
+Result<Vec2> Model::domainCorner(int face, int corner) const {
+  if (!impl_->validFace(face)) return failure(StatusCode::InvalidArgument, faceName(face), "no such face");
+  const int n = domainSides(face);
+  return impl_->surfaceOf(face).domainCorner(face, ((corner % n) + n) % n);
+}
+
+bool Model::hasExactSecondDerivatives(int face) const {
+  return impl_->validFace(face) && impl_->faceOptions[face].scheme == Scheme::GregoryG2;
+}
+
+const SurfaceOptions &Model::faceOptions(int face) const {
+  return impl_->groups[impl_->validFace(face) ? impl_->faceGroup[face] : 0].options;
+}
+
+int Model::surfaceCount() const { return static_cast<int>(impl_->groups.size()); }
+const Network &Model::network() const { return impl_->network; }
+const NetworkDescription &Model::description() const { return impl_->description; }
+const Surface *Model::surface(int face) const {
+  return impl_->validFace(face) ? &impl_->surfaceOf(face) : nullptr;
+}
+
+Status Model::setFaceOptions(int face, const SurfaceOptions &options) {
+  if (face != allFaces && !impl_->validFace(face))
+    return failure(StatusCode::InvalidArgument, faceName(face), "no such face");
+  std::vector<SurfaceOptions> perFace = impl_->faceOptions;
+  if (face == allFaces)
+    std::fill(perFace.begin(), perFace.end(), options);
+  else
+    perFace[face] = options;
+  return setFaceOptions(perFace);
+}
+
+Status Model::setFaceOptions(std::span<const SurfaceOptions> perFace) {
+  if (static_cast<int>(perFace.size()) != faceCount())
+    return failure(StatusCode::InvalidArgument, "options",
+                   std::to_string(perFace.size()) + " option sets for " + std::to_string(faceCount()) + " faces");
+  return guarded<Status>([&]() -> Status {
+    impl_ = Impl::assemble(impl_->description, {perFace.begin(), perFace.end()}, impl_.get());
+    return {};
+  });
+}
+
+Result<SurfacePoint> Model::evaluate(int face, const Vec2 &uv) const {
+  SurfacePoint out;
+  const Status status = evaluate(face, std::span(&uv, 1), std::span(&out, 1), {.threads = 1});
+  if (!status.ok()) return status;
+  return out;
+}
+
+Status Model::evaluate(int face, std::span<const Vec2> uv, std::span<SurfacePoint> out,
+                       const BatchOptions &options) const {
+  return guarded<Status>([&] {
+    return impl_->batch(face, uv, out, options,
+                        [face](const Surface &s, const Vec2 &p) { return s.evaluate(face, p); });
+  });
+}
+
+Result<SurfacePoint2> Model::evaluateSecondOrder(int face, const Vec2 &uv, const BatchOptions &options) const {
+  SurfacePoint2 out;
+  BatchOptions serial = options;
+  serial.threads = 1;
+  const Status status = evaluateSecondOrder(face, std::span(&uv, 1), std::span(&out, 1), serial);
+  if (!status.ok()) return status;
+  return out;
+}
+
+Status Model::evaluateSecondOrder(int face, std::span<const Vec2> uv, std::span<SurfacePoint2> out,
+                                  const BatchOptions &options) const {
+  if (!(options.step >= 1e-8 && options.step <= 1e-2))
+    return failure(StatusCode::InvalidArgument, "step", "must lie in [1e-8, 1e-2]");
+  return guarded<Status>([&] {
+    return impl_->batch(face, uv, out, options, [face, step = options.step](const Surface &s, const Vec2 &p) {
+      return s.evaluateSecondOrder(face, p, step);
+    });
+  });
+}
+
+Result<MeshSize> Model::tessellate(const TessellationOptions &options, int face) {
+  if (options.resolution < 1) return failure(StatusCode::InvalidArgument, "resolution", "must be at least 1");
+  if (options.threads < 0) return failure(StatusCode::InvalidArgument, "threads", "must be ≥ 0");
+  if (face != allFaces && !impl_->validFace(face))
+    return failure(StatusCode::InvalidArgument, faceName(face), "no such face");
+  return guarded<Result<MeshSize>>([&]() -> Result<MeshSize> {
+    Impl &m = *impl_;
+    if (!m.whole || m.wholeOptions.resolution != options.resolution ||
+        m.wholeOptions.recordDomainPoints != options.recordDomainPoints) {
+      m.whole.reset();
+      m.hasMesh = false;
+      m.whole = m.tessellateWhole(options);
+      m.wholeOptions = options;
+    }
+    m.mesh = face == allFaces ? *m.whole : Impl::cutFace(*m.whole, face);
+    m.hasMesh = true;
+    return MeshSize{m.mesh.positions.size(), m.mesh.triangles.size()};
+  });
+}
+
+const Mesh &Model::mesh() const { return impl_->mesh; }
+
+Status Model::copyMesh(std::span<Vec3> positions, std::span<Vec3> normals,
+                       std::span<std::array<std::uint32_t, 3>> triangles) const {
+  const Mesh &m = impl_->mesh;
+  if (!impl_->hasMesh) return failure(StatusCode::NoMesh, "mesh", "tessellate first");
+  auto small = [](const char *what, std::size_t have, std::size_t need) {
+    return failure(StatusCode::BufferTooSmall, what,
+                   "holds " + std::to_string(have) + ", the mesh needs " + std::to_string(need));
+  };
+  if (positions.size() < m.positions.size()) return small("positions", positions.size(), m.positions.size());
+  if (!normals.empty() && normals.size() < m.normals.size()) return small("normals", normals.size(), m.normals.size());
+  if (triangles.size() < m.triangles.size()) return small("triangles", triangles.size(), m.triangles.size());
+  std::copy(m.positions.begin(), m.positions.end(), positions.begin());
+  if (!normals.empty()) std::copy(m.normals.begin(), m.normals.end(), normals.begin());
+  std::copy(m.triangles.begin(), m.triangles.end(), triangles.begin());
+  return {};
+}
+
+Status Model::writeMesh(const std::string &path) const {
+  if (!impl_->hasMesh) return failure(StatusCode::NoMesh, "mesh", "tessellate first");
+  return guarded<Status>([&]() -> Status {
+    writeMeshFile(impl_->mesh, path);
+    return {};
+  });
+}
+
+Status Model::setCurve(int curve, BSplineCurve replacement) {
+  if (curve < 0 || curve >= curveCount())
+    return failure(StatusCode::InvalidArgument, "curve " + std::to_string(curve), "no such curve");
+  return guarded<Status>([&]() -> Status {
+    NetworkDescription description = impl_->description;
+    description.curves[curve] = std::move(replacement);
+    // Loops refer to curve parameters: keep them inside the new domain.
+    for (std::size_t f = 0; f < description.faces.size(); ++f)
+      for (std::size_t k = 0; k < description.faces[f].sides.size(); ++k) {
+        const SideDescription &side = description.faces[f].sides[k];
+        const BSplineCurve &c = description.curves[curve];
+        if (side.curve == curve && (std::min(side.from, side.to) < c.domainStart() - 1e-12 ||
+                                    std::max(side.from, side.to) > c.domainEnd() + 1e-12))
+          return failure(StatusCode::InvalidInput, faceName(static_cast<int>(f)) + " side " + std::to_string(k),
+                         "uses a parameter range outside the new curve's domain");
+      }
+    impl_ = Impl::assemble(std::move(description), impl_->faceOptions, nullptr);
+    return {};
+  });
+}
+
+Status Model::setControlPoints(int curve, std::span<const Vec3> points) {
+  if (curve < 0 || curve >= curveCount())
+    return failure(StatusCode::InvalidArgument, "curve " + std::to_string(curve), "no such curve");
+  const BSplineCurve &old = impl_->description.curves[curve];
+  if (points.size() != old.controlPoints().size())
+    return failure(StatusCode::InvalidArgument, "curve " + std::to_string(curve),
+                   std::to_string(points.size()) + " control points for a curve with " +
+                       std::to_string(old.controlPoints().size()));
+  auto replacement = makeCurve(old.degree(), old.knots(), {points.begin(), points.end()}, old.weights());
+  if (!replacement) {
+    Status status = replacement.status();
+    status.element = "curve " + std::to_string(curve);
+    return status;
+  }
+  return setCurve(curve, std::move(replacement).value());
+}
+
+} // namespace v1
+} // namespace curvenet

@@ -1,0 +1,216 @@
+/* The C interface (curvenet/curvenet.h), compiled as C. Builds networks from
+ * C arrays, evaluates, tessellates through caller buffers, edits, and checks
+ * that every failure comes back as a status code with an element and a
+ * message. Exit code 0 = all checks passed. */
+#include <curvenet/curvenet.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+static int failures = 0;
+
+#define EXPECT(cond)                                                                                           \
+  do {                                                                                                         \
+    if (!(cond)) {                                                                                             \
+      fprintf(stderr, "%s:%d: expected %s\n", __FILE__, __LINE__, #cond);                                      \
+      ++failures;                                                                                              \
+    }                                                                                                          \
+  } while (0)
+
+static const double pi = 3.14159265358979323846;
+static const double bezierKnots[8] = {0, 0, 0, 0, 1, 1, 1, 1};
+
+/* Five cubic Bézier curves around the unit pentagon, inner points raised by `lift`. */
+static void pentagon(double points[5][12], curvenet_curve curves[5], double lift) {
+  for (int k = 0; k < 5; ++k) {
+    const double a[3] = {cos(2 * pi * k / 5), sin(2 * pi * k / 5), 0};
+    const double b[3] = {cos(2 * pi * (k + 1) / 5), sin(2 * pi * (k + 1) / 5), 0};
+    for (int i = 0; i < 3; ++i) {
+      points[k][i] = a[i];
+      points[k][3 + i] = a[i] + (b[i] - a[i]) / 3 + (i == 2 ? lift : 0);
+      points[k][6 + i] = b[i] + (a[i] - b[i]) / 3 + (i == 2 ? lift : 0);
+      points[k][9 + i] = b[i];
+    }
+    curves[k] = (curvenet_curve){3, bezierKnots, 8, points[k], 4, NULL};
+  }
+}
+
+static double distance(const double a[3], const double b[3]) {
+  return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+static void loopAndEvaluate(void) {
+  double points[5][12];
+  curvenet_curve curves[5];
+  pentagon(points, curves, 0.3);
+  curvenet_surface_options options;
+  curvenet_surface_options_init(&options);
+  EXPECT(options.scheme == CURVENET_GREGORY_G1);
+  options.scheme = CURVENET_GREGORY_G2;
+  curvenet_status status;
+  curvenet_model *model = NULL;
+  EXPECT(curvenet_model_from_loop(curves, 5, &options, &model, &status) == CURVENET_OK);
+  if (!model) return;
+  EXPECT(status.code == CURVENET_OK && status.message[0] == '\0');
+  EXPECT(curvenet_model_face_count(model) == 1 && curvenet_model_curve_count(model) == 5);
+  EXPECT(curvenet_model_domain_sides(model, 0) == 5 && curvenet_model_domain_sides(model, 1) == 0);
+
+  /* Domain corner k is network corner k, where curve k starts; the midpoint
+   * of domain side k shows the midpoint of curve k: (P0 + 3 P1 + 3 P2 + P3) / 8. */
+  double uv[4], corner1[2];
+  EXPECT(curvenet_model_domain_corner(model, 0, 0, uv, &status) == CURVENET_OK);
+  EXPECT(curvenet_model_domain_corner(model, 0, 1, corner1, &status) == CURVENET_OK);
+  uv[2] = (uv[0] + corner1[0]) / 2;
+  uv[3] = (uv[1] + corner1[1]) / 2;
+  curvenet_point out[2];
+  EXPECT(curvenet_model_evaluate(model, 0, uv, 2, out, NULL, &status) == CURVENET_OK);
+  EXPECT(distance(out[0].point, points[0]) < 1e-12);
+  double mid[3];
+  for (int i = 0; i < 3; ++i) mid[i] = (points[0][i] + 3 * points[0][3 + i] + 3 * points[0][6 + i] + points[0][9 + i]) / 8;
+  EXPECT(distance(out[1].point, mid) < 1e-12);
+  EXPECT(fabs(out[1].normal[0] * out[1].normal[0] + out[1].normal[1] * out[1].normal[1] +
+              out[1].normal[2] * out[1].normal[2] - 1) < 1e-12);
+
+  /* Second order: the centre of a symmetric dome bends the same way in u and v. */
+  const double centre[2] = {0, 0};
+  curvenet_point2 second;
+  EXPECT(curvenet_model_evaluate_second_order(model, 0, centre, 1, &second, NULL, &status) == CURVENET_OK);
+  EXPECT(second.duu[2] < 0 && fabs(second.duu[2] - second.dvv[2]) < 1e-6 * fabs(second.duu[2]));
+
+  /* A batch with one point outside: it is NaN, the others evaluated. */
+  double batch[6] = {0, 0, 3, 0, 0.1, 0.1};
+  curvenet_point three[3];
+  curvenet_batch_options parallel;
+  curvenet_batch_options_init(&parallel);
+  parallel.parallel_threshold = 1;
+  EXPECT(curvenet_model_evaluate(model, 0, batch, 3, three, &parallel, &status) == CURVENET_OUT_OF_DOMAIN);
+  EXPECT(strcmp(status.element, "point 1") == 0);
+  EXPECT(isnan(three[1].point[0]) && !isnan(three[2].point[0]));
+  EXPECT(strstr(status.message, "point 1") != NULL);
+
+  /* Tessellation: size query, then caller buffers. */
+  size_t vertices = 0, triangles = 0;
+  EXPECT(curvenet_model_copy_mesh(model, batch, 0, NULL, 0, (uint32_t *)batch, 0, &status) == CURVENET_NO_MESH);
+  EXPECT(curvenet_model_tessellate(model, CURVENET_ALL_FACES, 4, 1, &vertices, &triangles, &status) == CURVENET_OK);
+  EXPECT(vertices == 5 * 4 + 1 + 5 * 3 + 5 * 3 * 2 / 2 && triangles == 5 * 16);
+  double positions[3 * 66], normals[3 * 66];
+  uint32_t indices[3 * 80];
+  if (vertices <= 66 && triangles <= 80) {
+    EXPECT(curvenet_model_copy_mesh(model, positions, vertices - 1, NULL, 0, indices, triangles, &status) ==
+           CURVENET_BUFFER_TOO_SMALL);
+    EXPECT(strcmp(status.element, "positions") == 0);
+    EXPECT(curvenet_model_copy_mesh(model, positions, vertices, normals, vertices, indices, triangles, &status) ==
+           CURVENET_OK);
+    /* Network corners come first: vertex 0 is where curve 0 starts. */
+    EXPECT(distance(positions, points[0]) < 1e-15);
+    uint32_t largest = 0;
+    for (size_t t = 0; t < 3 * triangles; ++t) largest = indices[t] > largest ? indices[t] : largest;
+    EXPECT(largest == vertices - 1);
+  }
+
+  /* Edit: raise curve 0's inner points; the side midpoint follows. */
+  points[0][5] += 0.2;
+  points[0][8] += 0.2;
+  EXPECT(curvenet_model_set_control_points(model, 0, points[0], 4, &status) == CURVENET_OK);
+  EXPECT(curvenet_model_copy_mesh(model, positions, 66, NULL, 0, indices, 80, &status) == CURVENET_NO_MESH);
+  EXPECT(curvenet_model_evaluate(model, 0, uv, 2, out, NULL, &status) == CURVENET_OK);
+  EXPECT(fabs(out[1].point[2] - (mid[2] + 0.75 * 0.2)) < 1e-12);
+  /* An edit that opens the loop is refused; the model keeps the last good curves. */
+  points[0][2] += 1;
+  EXPECT(curvenet_model_set_control_points(model, 0, points[0], 4, &status) == CURVENET_INVALID_INPUT);
+  EXPECT(status.message[0] != '\0');
+  curvenet_point again[2];
+  EXPECT(curvenet_model_evaluate(model, 0, uv, 2, again, NULL, &status) == CURVENET_OK);
+  EXPECT(again[1].point[2] == out[1].point[2]);
+  EXPECT(curvenet_model_set_control_points(model, 0, points[0], 3, &status) == CURVENET_INVALID_ARGUMENT);
+
+  curvenet_model_destroy(model);
+}
+
+static void errors(void) {
+  curvenet_status status;
+  curvenet_model *model = (curvenet_model *)&status; /* must be reset to NULL on failure */
+  EXPECT(curvenet_model_load("builtin:no-such-network", NULL, &model, &status) == CURVENET_INVALID_INPUT);
+  EXPECT(model == NULL && status.message[0] != '\0');
+  EXPECT(curvenet_model_load(NULL, NULL, &model, &status) == CURVENET_INVALID_ARGUMENT);
+  EXPECT(strcmp(status.element, "input") == 0);
+
+  /* A curve with the wrong knot count names the curve. */
+  const double knots[3] = {0, 0, 1};
+  const double line[6] = {0, 0, 0, 1, 0, 0};
+  curvenet_curve bad = {1, knots, 3, line, 2, NULL};
+  EXPECT(curvenet_model_from_loop(&bad, 1, NULL, &model, &status) == CURVENET_INVALID_INPUT);
+  EXPECT(strcmp(status.element, "curve 0") == 0);
+
+  /* Out-of-range enums are caught before they reach the engine. */
+  curvenet_surface_options options;
+  curvenet_surface_options_init(&options);
+  options.scheme = (curvenet_scheme)42;
+  EXPECT(curvenet_model_load("builtin:pentagon", &options, &model, &status) == CURVENET_INVALID_ARGUMENT);
+
+  /* Status may be NULL; the code still says what happened. */
+  EXPECT(curvenet_model_load("builtin:pentagon", NULL, &model, NULL) == CURVENET_OK);
+  EXPECT(curvenet_model_evaluate(model, 3, line, 1, NULL, NULL, NULL) == CURVENET_INVALID_ARGUMENT);
+  options.scheme = CURVENET_GREGORY_G2;
+  options.sweepline = CURVENET_SWEEPLINE_RADIAL; /* gregory-g2 refuses the radial sweep */
+  EXPECT(curvenet_model_set_face_options(model, 0, &options, &status) == CURVENET_INVALID_INPUT);
+  EXPECT(curvenet_model_write_mesh(model, "never.obj", &status) == CURVENET_NO_MESH);
+  curvenet_model_destroy(model);
+  curvenet_model_destroy(NULL);
+
+  EXPECT(strcmp(curvenet_status_code_name(CURVENET_OUT_OF_DOMAIN), "out-of-domain") == 0);
+  EXPECT(strlen(curvenet_version()) >= 5);
+}
+
+/* Two faces sharing a curve, given as curve ranges: the shared edge is
+ * watertight in the whole-network mesh. */
+static void twoFaces(void) {
+  /* A square split by the curve x = 0.5; boundary as four straight curves. */
+  const double knots[4] = {0, 0, 1, 1};
+  const double c[7][6] = {
+      {0, 0, 0, 1, 0, 0},     /* 0: bottom */
+      {1, 0, 0, 1, 1, 0},     /* 1: right */
+      {1, 1, 0, 0, 1, 0},     /* 2: top */
+      {0, 1, 0, 0, 0, 0},     /* 3: left */
+      {0.5, 0, 0, 0.5, 1, 0}, /* 4: middle */
+  };
+  curvenet_curve curves[5];
+  for (int k = 0; k < 5; ++k) curves[k] = (curvenet_curve){1, knots, 4, c[k], 2, NULL};
+  const curvenet_side left[4] = {{0, 0, 0.5}, {4, 0, 1}, {2, 0.5, 1}, {3, 0, 1}};
+  const curvenet_side right[4] = {{0, 0.5, 1}, {1, 0, 1}, {2, 0, 0.5}, {4, 1, 0}};
+  const curvenet_face faces[2] = {{left, 4}, {right, 4}};
+  curvenet_status status;
+  curvenet_model *model = NULL;
+  EXPECT(curvenet_model_build(curves, 5, faces, 2, NULL, &model, &status) == CURVENET_OK);
+  if (!model) {
+    fprintf(stderr, "%s\n", status.message);
+    return;
+  }
+  size_t vertices = 0, triangles = 0;
+  EXPECT(curvenet_model_tessellate(model, CURVENET_ALL_FACES, 3, 0, &vertices, &triangles, &status) == CURVENET_OK);
+  /* 6 corners, 7 segments × 2 edge samples, 2 × (1 + 4·2 + 4·2·1/2) inside. */
+  EXPECT(vertices == 6 + 7 * 2 + 2 * (1 + 8 + 4) && triangles == 2 * 4 * 9);
+  /* The planar square is reproduced: every vertex at z = 0. */
+  double positions[3 * 46];
+  uint32_t indices[3 * 72];
+  if (vertices <= 46 && triangles <= 72) {
+    EXPECT(curvenet_model_copy_mesh(model, positions, vertices, NULL, 0, indices, triangles, &status) == CURVENET_OK);
+    double worst = 0;
+    for (size_t v = 0; v < vertices; ++v) worst = fabs(positions[3 * v + 2]) > worst ? fabs(positions[3 * v + 2]) : worst;
+    EXPECT(worst < 1e-12);
+  }
+  /* One face: 4 corners + 4 sides × 2 samples + 13 inside. */
+  EXPECT(curvenet_model_tessellate(model, 1, 3, 0, &vertices, NULL, &status) == CURVENET_OK);
+  EXPECT(vertices == 4 + 8 + 13);
+  curvenet_model_destroy(model);
+}
+
+int main(void) {
+  loopAndEvaluate();
+  errors();
+  twoFaces();
+  if (failures) fprintf(stderr, "%d check(s) failed\n", failures);
+  else printf("all C interface checks passed\n");
+  return failures ? 1 : 0;
+}

@@ -1,0 +1,241 @@
+// The embedding facade (curvenet/curvenet.hpp). Every call is compared with
+// the lower-level Surface / tessellate API it stands for — same bits — and
+// every failure path must come back as a Status naming the element, with the
+// model unchanged, instead of an exception.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "curvenet/builtins.hpp"
+#include "curvenet/curvenet.hpp"
+
+using namespace curvenet;
+
+namespace {
+
+bool sameBits(const Vec3 &a, const Vec3 &b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+bool samePoint(const SurfacePoint &a, const SurfacePoint &b) {
+  return sameBits(a.point, b.point) && sameBits(a.du, b.du) && sameBits(a.dv, b.dv) && sameBits(a.normal, b.normal);
+}
+
+/// Uniform random points of face f's domain polygon (fan triangles).
+std::vector<Vec2> domainPoints(const Model &model, int face, std::size_t count, unsigned seed) {
+  const int n = model.domainSides(face);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<Vec2> points(count);
+  for (Vec2 &p : points) {
+    const int k = static_cast<int>(unit(rng) * n) % n;
+    double a = unit(rng), b = unit(rng);
+    if (a + b > 1) a = 1 - a, b = 1 - b;
+    p = *model.domainCorner(face, k) * a + *model.domainCorner(face, k + 1) * b;
+  }
+  return points;
+}
+
+/// A dome-like loop of five cubic Bézier curves around the unit pentagon.
+std::vector<BSplineCurve> pentagonLoop(double lift) {
+  std::vector<BSplineCurve> curves;
+  auto corner = [](int k) {
+    const double a = 2 * std::numbers::pi * k / 5;
+    return Vec3{std::cos(a), std::sin(a), 0};
+  };
+  for (int k = 0; k < 5; ++k) {
+    const Vec3 a = corner(k), b = corner(k + 1), up{0, 0, lift};
+    curves.push_back(*makeBezier({a, a + (b - a) / 3 + up, b + (a - b) / 3 + up, b}));
+  }
+  return curves;
+}
+
+} // namespace
+
+TEST(Embed, EvaluationEqualsTheSurfaceItWraps) {
+  for (Scheme scheme : {Scheme::GregoryG1, Scheme::CompositeRibbon, Scheme::GregoryG2}) {
+    auto model = Model::load("builtin:sphere-dodecahedron", {.scheme = scheme});
+    ASSERT_TRUE(model.ok()) << model.status().toString();
+    const Surface direct = Surface::build(Network::build(builtinNetwork("sphere-dodecahedron")), {.scheme = scheme});
+    for (int face : {0, 7}) {
+      const std::vector<Vec2> uv = domainPoints(*model, face, 300, face + 1);
+      std::vector<SurfacePoint> batch(uv.size());
+      ASSERT_TRUE(model->evaluate(face, uv, batch).ok());
+      for (std::size_t k = 0; k < uv.size(); ++k) {
+        ASSERT_TRUE(samePoint(batch[k], direct.evaluate(face, uv[k]))) << schemeName(scheme) << " point " << k;
+        ASSERT_TRUE(samePoint(*model->evaluate(face, uv[k]), batch[k]));
+      }
+    }
+  }
+}
+
+TEST(Embed, BatchOutputDoesNotDependOnThreads) {
+  auto model = Model::load("builtin:pentagon", {.scheme = Scheme::GregoryG2});
+  ASSERT_TRUE(model.ok()) << model.status().toString();
+  const std::vector<Vec2> uv = domainPoints(*model, 0, 20000, 3);
+  std::vector<SurfacePoint> serial(uv.size()), parallel(uv.size()), two(uv.size());
+  ASSERT_TRUE(model->evaluate(0, uv, serial, {.threads = 1}).ok());
+  ASSERT_TRUE(model->evaluate(0, uv, parallel, {.threads = 0, .parallelThreshold = 1}).ok());
+  ASSERT_TRUE(model->evaluate(0, uv, two, {.threads = 2}).ok());
+  for (std::size_t k = 0; k < uv.size(); ++k) {
+    ASSERT_TRUE(samePoint(serial[k], parallel[k])) << k;
+    ASSERT_TRUE(samePoint(serial[k], two[k])) << k;
+  }
+}
+
+TEST(Embed, SecondOrderBatchMatchesSurfaceAndIsExactForG2Only) {
+  auto model = Model::load("builtin:pentagon", {.scheme = Scheme::GregoryG2});
+  ASSERT_TRUE(model.ok());
+  EXPECT_TRUE(model->hasExactSecondDerivatives(0));
+  const std::vector<Vec2> uv = domainPoints(*model, 0, 50, 4);
+  std::vector<SurfacePoint2> out(uv.size());
+  ASSERT_TRUE(model->evaluateSecondOrder(0, uv, out).ok());
+  for (std::size_t k = 0; k < uv.size(); ++k) {
+    const SurfacePoint2 ref = model->surface(0)->evaluateSecondOrder(0, uv[k]);
+    EXPECT_TRUE(sameBits(out[k].duu, ref.duu) && sameBits(out[k].duv, ref.duv) && sameBits(out[k].dvv, ref.dvv));
+  }
+  ASSERT_TRUE(model->setFaceOptions(Model::allFaces, {.scheme = Scheme::GregoryG1}).ok());
+  EXPECT_FALSE(model->hasExactSecondDerivatives(0));
+  EXPECT_EQ(model->evaluateSecondOrder(0, {0, 0}, {.step = 1.0}).status().code, StatusCode::InvalidArgument);
+}
+
+TEST(Embed, PointsOutsideTheDomainAreReportedAndTheRestEvaluated) {
+  auto model = Model::load("builtin:pentagon");
+  ASSERT_TRUE(model.ok());
+  const Vec2 corner = *model->domainCorner(0, 2);
+  // A corner and a side midpoint lie on the polygon and must be accepted.
+  const Vec2 mid = (*model->domainCorner(0, 0) + *model->domainCorner(0, 1)) * 0.5;
+  std::vector<Vec2> uv{{0, 0}, corner, corner * 1.01, mid, {NAN, 0}, {0.1, 0.2}};
+  std::vector<SurfacePoint> out(uv.size());
+  const Status status = model->evaluate(0, uv, out);
+  EXPECT_EQ(status.code, StatusCode::OutOfDomain);
+  EXPECT_EQ(status.element, "point 2");
+  EXPECT_NE(status.message.find("2 of 6"), std::string::npos) << status.message;
+  for (std::size_t k : {0, 1, 3, 5}) EXPECT_TRUE(samePoint(out[k], model->surface(0)->evaluate(0, uv[k]))) << k;
+  EXPECT_TRUE(std::isnan(out[2].point.x) && std::isnan(out[4].normal.z));
+
+  EXPECT_EQ(model->evaluate(5, {0, 0}).status().code, StatusCode::InvalidArgument);
+  EXPECT_EQ(model->evaluate(5, {0, 0}).status().element, "face 5");
+  std::vector<SurfacePoint> tooFew(2);
+  EXPECT_EQ(model->evaluate(0, uv, tooFew).code, StatusCode::InvalidArgument);
+}
+
+TEST(Embed, BadNetworksComeBackAsStatusNotExceptions) {
+  // A loop that does not close: the last curve ends away from the first start.
+  std::vector<BSplineCurve> open = pentagonLoop(0.3);
+  open[4] = *makeBezier({open[4].controlPoints().front(), Vec3{2, 2, 2}});
+  auto model = Model::fromLoop(open);
+  ASSERT_FALSE(model.ok());
+  EXPECT_EQ(model.status().code, StatusCode::InvalidInput);
+  EXPECT_NE(model.status().element.find("face 0"), std::string::npos) << model.status().toString();
+
+  EXPECT_EQ(Model::load("no-such-file.json").status().code, StatusCode::InvalidInput);
+  EXPECT_EQ(Model::load("builtin:no-such-network").status().code, StatusCode::InvalidInput);
+  EXPECT_EQ(makeCurve(2, {0, 0, 1, 1}, {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}).status().code, StatusCode::InvalidInput);
+  EXPECT_EQ(makeBezier({{0, 0, 0}}).status().code, StatusCode::InvalidInput);
+  // gregory-g2 refuses the radial sweep; the failed call leaves the options.
+  auto ok = Model::fromLoop(pentagonLoop(0.3));
+  ASSERT_TRUE(ok.ok());
+  const Status refused = ok->setFaceOptions(0, {.scheme = Scheme::GregoryG2, .sweepline = Sweepline::Radial});
+  EXPECT_EQ(refused.code, StatusCode::InvalidInput);
+  EXPECT_EQ(ok->faceOptions(0).scheme, Scheme::GregoryG1);
+}
+
+TEST(Embed, PerFaceSchemesEvaluateAndTessellateByTheirOwnSurface) {
+  auto model = Model::load("builtin:sphere-dodecahedron");
+  ASSERT_TRUE(model.ok());
+  ASSERT_TRUE(model->setFaceOptions(3, {.scheme = Scheme::GregoryG2}).ok());
+  ASSERT_TRUE(model->setFaceOptions(5, {.scheme = Scheme::CompositeRibbon}).ok());
+  EXPECT_EQ(model->surfaceCount(), 3);
+  const Network network = Network::build(builtinNetwork("sphere-dodecahedron"));
+  const Surface g1 = Surface::build(network, {.scheme = Scheme::GregoryG1});
+  const Surface g2 = Surface::build(network, {.scheme = Scheme::GregoryG2});
+  const Surface cr = Surface::build(network, {.scheme = Scheme::CompositeRibbon});
+  const Vec2 uv{0.1, -0.2};
+  EXPECT_TRUE(samePoint(*model->evaluate(3, uv), g2.evaluate(3, uv)));
+  EXPECT_TRUE(samePoint(*model->evaluate(5, uv), cr.evaluate(5, uv)));
+  EXPECT_TRUE(samePoint(*model->evaluate(4, uv), g1.evaluate(4, uv)));
+
+  // The merged mesh: every vertex from the surface of the face it was
+  // evaluated in, one shared index buffer (so still watertight).
+  auto size = model->tessellate({.resolution = 6, .recordDomainPoints = true});
+  ASSERT_TRUE(size.ok());
+  const Mesh &mesh = model->mesh();
+  const Mesh m1 = tessellate(g1, {.resolution = 6}), m2 = tessellate(g2, {.resolution = 6}),
+             mc = tessellate(cr, {.resolution = 6});
+  ASSERT_EQ(mesh.triangles, m1.triangles);
+  int fromG2 = 0, fromCr = 0;
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    const int f = mesh.domainPoints[v].face;
+    const Mesh &expected = f == 3 ? m2 : f == 5 ? mc : m1;
+    ASSERT_TRUE(sameBits(mesh.positions[v], expected.positions[v]) && sameBits(mesh.normals[v], expected.normals[v]))
+        << "vertex " << v << " of face " << f;
+    fromG2 += f == 3;
+    fromCr += f == 5;
+  }
+  EXPECT_GT(fromG2, 0);
+  EXPECT_GT(fromCr, 0);
+}
+
+TEST(Embed, OneFaceMeshIsThePieceOfTheWholeMesh) {
+  auto model = Model::load("builtin:sphere-dodecahedron");
+  ASSERT_TRUE(model.ok());
+  const int r = 5;
+  auto whole = model->tessellate({.resolution = r});
+  ASSERT_TRUE(whole.ok());
+  const Mesh all = model->mesh();
+  auto one = model->tessellate({.resolution = r}, 4);
+  ASSERT_TRUE(one.ok());
+  // A pentagon: 5 r boundary samples, 1 + 5 (r − 1) + 5 (r − 1)(r − 2) / 2 inside.
+  EXPECT_EQ(one->vertices, std::size_t(5 * r + 1 + 5 * (r - 1) + 5 * (r - 1) * (r - 2) / 2));
+  EXPECT_EQ(one->triangles, std::size_t(5 * r * r));
+  const Mesh &piece = model->mesh();
+  for (std::uint32_t t = all.faceTriangleStart[4]; t < all.faceTriangleStart[5]; ++t)
+    for (int c = 0; c < 3; ++c)
+      EXPECT_TRUE(sameBits(all.positions[all.triangles[t][c]],
+                           piece.positions[piece.triangles[t - all.faceTriangleStart[4]][c]]));
+
+  // Caller buffers: too small is refused, exact size is filled.
+  std::vector<Vec3> positions(one->vertices - 1), normals(one->vertices);
+  std::vector<std::array<std::uint32_t, 3>> triangles(one->triangles);
+  EXPECT_EQ(model->copyMesh(positions, normals, triangles).code, StatusCode::BufferTooSmall);
+  positions.resize(one->vertices);
+  ASSERT_TRUE(model->copyMesh(positions, normals, triangles).ok());
+  EXPECT_TRUE(sameBits(positions.back(), piece.positions.back()) && triangles == piece.triangles);
+  EXPECT_TRUE(model->copyMesh(positions, {}, triangles).ok());
+  EXPECT_EQ(model->tessellate({.resolution = 0}).status().code, StatusCode::InvalidArgument);
+}
+
+TEST(Embed, EditingACurveRebuildsAsAFreshModelWould) {
+  auto model = Model::fromLoop(pentagonLoop(0.3), {.scheme = Scheme::GregoryG2});
+  ASSERT_TRUE(model.ok());
+  ASSERT_TRUE(model->tessellate({.resolution = 4}).ok());
+  const SurfacePoint before = *model->evaluate(0, {0, 0});
+
+  // Raise the inner control points of curve 2: the ends stay, so the loop closes.
+  std::vector<Vec3> points = model->description().curves[2].controlPoints();
+  points[1].z += 0.2;
+  points[2].z += 0.2;
+  ASSERT_TRUE(model->setControlPoints(2, points).ok());
+  EXPECT_TRUE(model->mesh().positions.empty()) << "an edit clears the kept mesh";
+  EXPECT_EQ(model->copyMesh({}, {}, {}).code, StatusCode::NoMesh);
+
+  std::vector<BSplineCurve> edited = pentagonLoop(0.3);
+  edited[2] = *makeBezier(points);
+  auto fresh = Model::fromLoop(edited, {.scheme = Scheme::GregoryG2});
+  ASSERT_TRUE(fresh.ok());
+  for (const Vec2 &uv : domainPoints(*model, 0, 50, 9))
+    ASSERT_TRUE(samePoint(*model->evaluate(0, uv), *fresh->evaluate(0, uv)));
+  EXPECT_GT(model->evaluate(0, {0, 0})->point.z, before.point.z);
+  // The boundary follows the new curve: domain side 2 shows curve 2.
+  const Vec2 side = model->surface(0)->domainPointOnFaceSide(0, 2, 0.5);
+  EXPECT_LT(norm(model->evaluate(0, side)->point - edited[2].point(0.5)), 1e-12);
+
+  // An edit that opens the loop is refused and changes nothing.
+  const SurfacePoint kept = *model->evaluate(0, {0.1, 0.1});
+  points.front().z += 0.5;
+  const Status refused = model->setControlPoints(2, points);
+  EXPECT_EQ(refused.code, StatusCode::InvalidInput) << refused.toString();
+  EXPECT_TRUE(samePoint(*model->evaluate(0, {0.1, 0.1}), kept));
+  EXPECT_EQ(model->setControlPoints(2, std::span(points).first(2)).code, StatusCode::InvalidArgument);
+  EXPECT_EQ(model->setControlPoints(9, points).code, StatusCode::InvalidArgument);
+}
