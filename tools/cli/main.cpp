@@ -20,8 +20,7 @@ int main(int argc, char **argv) {
   track(addTessellateCommand(app));
   track(addCheckCommand(app));
   track(addRenderCommand(app));
-  track(addPendingCommand(app, "bench", "G1 vs G2 evaluation cost (paper 000 Table 1 form)",
-                          "the G2 scheme and the evaluation plans"));
+  track(addBenchCommand(app));
   track(addPendingCommand(app, "approximate", "G1/G2 surfaces fitted to a triangle mesh (paper 000 Fig. 10)",
                           "mesh approximation"));
   track(addListCommand(app));

@@ -27,11 +27,32 @@ struct TessellationOptions {
   int threads = 0;
   /// Also fill Mesh::domainPoints (16 bytes more per vertex).
   bool recordDomainPoints = false;
+  /// Evaluate face interiors through cached evaluation plans (DESIGN.md §4):
+  /// the geometry-free part of every sample (sweepline roots, blends) is
+  /// computed once per (scheme, sides, resolution, sweepline) and shared by
+  /// all faces and calls; the patch then costs its ribbon evaluations plus
+  /// SIMD weighted sums. The points equal Surface::evaluate's to ~1e-12
+  /// relative. false: evaluate every sample through Surface::evaluate.
+  bool usePlans = true;
 };
+
+/// The process-wide cache of evaluation plans: how many are built and the
+/// bytes they hold. Thread-safe.
+struct PlanCacheStats {
+  std::size_t plans = 0, bytes = 0;
+};
+PlanCacheStats evaluationPlanCache();
+/// Drops every cached plan (tessellations in flight keep theirs alive); the
+/// next tessellation builds them again — a cold start. Thread-safe.
+void clearEvaluationPlans();
 
 /// Vertices per face interior + boundaries, a quick estimate for memory checks.
 std::size_t estimateMeshVertices(const Surface &surface, int resolution);
 
+/// Tessellates every face (see the file comment). Parallel over faces and,
+/// for large faces, over tiles of samples (explicit grain sizes); small
+/// inputs run serially. Memory: the mesh plus the plans (about 90 bytes per
+/// sample of each distinct (sides, resolution)). Thread-safe.
 Mesh tessellate(const Surface &surface, const TessellationOptions &options = {});
 
 } // namespace v1

@@ -101,9 +101,12 @@ QuinticPatch::Point evaluateBezierFace(const BezierSurfaceData &data, int face, 
 } // namespace bezier
 
 class Surface;
+class Patch;
 /// The Bézier data of a surface built with bezier-g1 or coons-c0 (nullptr otherwise).
 struct SurfaceAccess {
   static const bezier::BezierSurfaceData *bezierData(const Surface &surface);
+  /// The transfinite patch of a face (nullptr for the Bézier schemes).
+  static const Patch *patch(const Surface &surface, int face);
 };
 
 } // namespace v1

@@ -32,7 +32,9 @@ struct Homogeneous {
 // scratch keeps evaluation free of heap allocation.
 void basisDerivatives(int span, double t, int p, int n, std::span<const double> U,
                       std::array<std::array<double, kMaxOrder>, 4> &ders) {
-  std::array<std::array<double, kMaxOrder>, kMaxOrder> ndu{};
+  // Uninitialized on purpose: the algorithm (Piegl–Tiller A2.3) reads only the
+  // entries it has written, and zeroing 16×16 doubles per call dominated ribbon evaluation.
+  std::array<std::array<double, kMaxOrder>, kMaxOrder> ndu;
   std::array<double, kMaxOrder> left{}, right{};
   ndu[0][0] = 1.0;
   for (int j = 1; j <= p; ++j) {

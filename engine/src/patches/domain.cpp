@@ -130,9 +130,24 @@ RegularDomain::SweepParameters RegularDomain::hermiteSweep(int i, Dual u, Dual v
     f0 = f1;
   }
   if (best < 0) best = std::clamp(px, 0.0, 1.0); // outside the domain: nearest base point
+  return hermiteSweepFromRoot(i, u, v, best, quintic);
+}
+
+RegularDomain::SweepParameters RegularDomain::hermiteSweepFromRoot(int i, Dual u, Dual v, double best,
+                                                                   bool quintic) const {
+  Dual x, y;
+  sideFrame(i, u, v, x, y);
+  const Vec2 e = corner(i + 1) - corner(i);
+  const Vec2 a = inFrame(e, corner(i - 1) - corner(i));
+  const Vec2 b = inFrame(e, corner(i + 2) - corner(i + 1));
+  auto H = [quintic](double s) -> std::array<double, 2> {
+    if (quintic) return {1 - s * s * s * (10 - 15 * s + 6 * s * s), -30 * s * s * (1 - s) * (1 - s)};
+    return {2 * s * s * s - 3 * s * s + 1, 6 * s * s - 6 * s};
+  };
+  const double px = x.v, py = y.v;
   // Implicit differentiation of F(s; x, y) = 0.
-  Vec2 val, slope;
-  w(best, val, slope);
+  const auto h0 = H(best), h1 = H(1 - best);
+  const Vec2 val = a * h0[0] + b * h1[0], slope = a * h0[1] - b * h1[1];
   const double Fs = -val.y + (px - best) * slope.y - py * slope.x;
   const double sx = Fs != 0 ? -val.y / Fs : 0, sy = Fs != 0 ? val.x / Fs : 0;
   Dual s{best, sx * x.du + sy * y.du, sx * x.dv + sy * y.dv};

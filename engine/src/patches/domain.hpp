@@ -39,6 +39,9 @@ public:
     Dual s, d;
   };
   SweepParameters hermiteSweep(int i, Dual u, Dual v, bool quintic = false) const;
+  /// hermiteSweep's result for a root found elsewhere (the batched solver of
+  /// curvenet::kernels): s_i = root with its derivatives, and d_i.
+  SweepParameters hermiteSweepFromRoot(int i, Dual u, Dual v, double root, bool quintic = false) const;
   /// s_i of the Hermite sweepline with exact second derivatives: the root of
   /// hermiteSweep refined by two Newton steps in hyper-dual arithmetic (the
   /// first fixes the first derivatives, the second the second derivatives).

@@ -133,7 +133,7 @@ DualVec3 Patch::gregory(Dual u, Dual v) const {
                ? domain_.radialSideParameter(i, u, v)
                : domain_.hermiteSweep(i, u, v, options_.sweepline == Sweepline::QuinticHermite).s;
     distance[i] = domain_.perpendicularDistance(i, u, v);
-    jet[i] = ribbons_[i].at(std::clamp(s[i].v, 0.0, 1.0));
+    jet[i] = ribbons_[i].at(ribbons_[i].snap(std::clamp(s[i].v, 0.0, 1.0)));
   }
   // Corner blends in product form (safe on the sides):
   // B_{i,i−1} = ∏_{j∉{i,i−1}} Δ_j² / Σ_k ∏_{j∉{k,k−1}} Δ_j².
@@ -179,7 +179,7 @@ Dual2Vec3 Patch::evaluateSecondOrder(double uValue, double vValue) const {
     s[i] = domain_.hermiteSweepSide2(i, u, v, quintic);
     const Dual2 distance = domain_.perpendicularDistance2(i, u, v);
     cubed[i] = distance * distance * distance;
-    const double side = std::clamp(s[i].v, 0.0, 1.0);
+    const double side = ribbons_[i].snap(std::clamp(s[i].v, 0.0, 1.0));
     jet[i] = side == 0.0 ? parabolic_[i].start() : side == 1.0 ? parabolic_[i].end() : parabolic_[i].secondOrder(side);
   }
   std::array<Dual2, kMaxSides> blend;
@@ -216,7 +216,7 @@ DualVec3 Patch::gregoryG2(Dual u, Dual v) const {
     s[i] = domain_.hermiteSweep(i, u, v, quintic).s;
     const Dual distance = domain_.perpendicularDistance(i, u, v);
     cubed[i] = distance * distance * distance;
-    jet[i] = parabolic_[i].at(std::clamp(s[i].v, 0.0, 1.0));
+    jet[i] = parabolic_[i].at(ribbons_[i].snap(std::clamp(s[i].v, 0.0, 1.0)));
   }
   // Corner blends in product form with m = 3 (eq. 18): their first and second
   // derivatives vanish on every side but the two at the corner.
@@ -256,16 +256,8 @@ DualVec3 Patch::compositeRibbon(Dual u, Dual v) const {
   }
   for (int i = 0; i < n; ++i) s[i] = domain_.linearSweepSideParameter(i, u, v);
 
-  auto gamma = [](Dual x) { return x / (x * 2.0 + 1.0); };
-  auto hermite0 = [](Dual x) { return x * x * (x * 2.0 - 3.0) + 1.0; }; // α0 = 2x³ − 3x² + 1
-  // Ribbon with the γ reparameterization: R_i(s, d) = P_i(s) + γ(d) T_i(s).
-  auto ribbon = [&](int i, Dual side, Dual dist) {
-    const RibbonJet j = ribbons_[domain_.wrap(i)].at(std::clamp(side.v, 0.0, 1.0));
-    return DualVec3::along(j.P, j.dP, side) + gamma(dist) * DualVec3::along(j.T, j.dT, side);
-  };
-
   // CR blends B_i = (D_{i,i−1} + D_{i,i+1}) / Σ_j D_{j,j−1}, D = ∏ d_j² over the others.
-  std::array<Dual, kMaxSides> squared, cornerProduct;
+  std::array<Dual, kMaxSides> squared, cornerProduct, blend;
   for (int i = 0; i < n; ++i) squared[i] = d[i] * d[i];
   Dual total = 0.0;
   for (int i = 0; i < n; ++i) { // cornerProduct[i] = D_{i,i−1}
@@ -275,10 +267,23 @@ DualVec3 Patch::compositeRibbon(Dual u, Dual v) const {
     cornerProduct[i] = product;
     total += product;
   }
+  for (int i = 0; i < n; ++i) blend[i] = (cornerProduct[i] + cornerProduct[domain_.wrap(i + 1)]) / total;
+  return compositeRibbonFrom(s.data(), d.data(), blend.data());
+}
 
+DualVec3 Patch::compositeRibbonFrom(const Dual *s, const Dual *d, const Dual *blends) const {
+  const int n = domain_.sides();
+  auto gamma = [](Dual x) { return x / (x * 2.0 + 1.0); };
+  auto hermite0 = [](Dual x) { return x * x * (x * 2.0 - 3.0) + 1.0; }; // α0 = 2x³ − 3x² + 1
+  // Ribbon with the γ reparameterization: R_i(s, d) = P_i(s) + γ(d) T_i(s).
+  auto ribbon = [&](int i, Dual side, Dual dist) {
+    const LinearRibbon &r = ribbons_[domain_.wrap(i)];
+    const RibbonJet j = r.at(r.snap(std::clamp(side.v, 0.0, 1.0)));
+    return DualVec3::along(j.P, j.dP, side) + gamma(dist) * DualVec3::along(j.T, j.dT, side);
+  };
   DualVec3 result{};
   for (int i = 0; i < n; ++i) {
-    const Dual blend = (cornerProduct[i] + cornerProduct[domain_.wrap(i + 1)]) / total;
+    const Dual blend = blends[i];
     if (blend.isZero()) continue;
     const int prev = domain_.wrap(i - 1), next = domain_.wrap(i + 1);
     const Dual si = s[i], di = d[i], one = 1.0;

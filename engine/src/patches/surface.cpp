@@ -143,6 +143,10 @@ const bezier::BezierSurfaceData *SurfaceAccess::bezierData(const Surface &surfac
   return surface.impl_->bezier.get();
 }
 
+const Patch *SurfaceAccess::patch(const Surface &surface, int face) {
+  return surface.impl_->bezier ? nullptr : &surface.impl_->patches.at(face);
+}
+
 namespace {
 const RegularDomain &squareDomain() {
   static const RegularDomain domain(4);

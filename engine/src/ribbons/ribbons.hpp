@@ -7,6 +7,7 @@
 // also carries one transversal curvature κ_D(u), shared the same way.
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -126,6 +127,16 @@ public:
   };
   SecondJet secondJet(double s) const;
   const std::vector<Piece> &pieces() const { return pieces_; }
+  /// s moved onto a segment break when within 1e-12 of it. The ribbon's
+  /// derivatives jump at a break (each segment has its own fence), so two
+  /// evaluations of the same sample whose side parameters differ by a
+  /// rounding error (pointwise and through a plan) must land on the same
+  /// side of it. Every evaluation path snaps before calling at().
+  double snap(double s) const {
+    for (size_t j = 0; j + 1 < pieces_.size(); ++j)
+      if (std::abs(s - pieces_[j].sTo) <= 1e-12) return pieces_[j].sTo;
+    return s;
+  }
   /// Index of the piece holding side parameter s, the segment parameter
   /// there, and du/ds.
   int pieceAt(double s, double &local, double &dLocal) const;

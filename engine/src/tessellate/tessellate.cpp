@@ -6,6 +6,7 @@
 // concatenated in face order, so the output does not depend on threads.
 #include "curvenet/tessellate.hpp"
 
+#include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
@@ -13,7 +14,10 @@
 #include <cmath>
 #include <optional>
 
+#include "bezier/bezier_surface.hpp"
 #include "curvenet/error.hpp"
+#include "patches/patch.hpp"
+#include "plans/plan.hpp"
 
 namespace curvenet {
 inline namespace v1 {
@@ -52,9 +56,13 @@ struct Layout {
   std::uint32_t vertexCount;
 };
 
-std::uint32_t faceInteriorCount(int n, int r) {
-  return static_cast<std::uint32_t>(1 + n * (r - 1) + n * (r - 1) * (r - 2) / 2);
-}
+// Samples per tile when face interiors are evaluated through plans: big
+// enough to amortize the per-tile setup of the kernels, small enough that a
+// tile's structure-of-arrays scratch stays in the L2 cache and that large
+// faces split across threads.
+constexpr std::size_t kTileSamples = 512;
+// Below this many samples in all, tessellation runs serially.
+constexpr std::size_t kSerialSamples = 4096;
 
 Layout makeLayout(const Surface &surface, int resolution) {
   const Network &net = surface.network();
@@ -165,6 +173,53 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
           if (record) mesh.domainPoints[p.id] = {f, p.domain};
         }
 
+  // Face interiors through evaluation plans: the plans first (each distinct
+  // key built once, itself in parallel), then tiles of samples in parallel.
+  std::vector<std::shared_ptr<const EvaluationPlan>> plans(faces);
+  const bool planned = options.usePlans && faces > 0 && SurfaceAccess::patch(surface, 0) != nullptr;
+  if (planned) {
+    struct Tile {
+      int face;
+      std::size_t first, count;
+    };
+    std::vector<Tile> tiles;
+    std::size_t total = 0;
+    for (int f = 0; f < faces; ++f) {
+      plans[f] = evaluationPlan(planKey(surface.options(), surface.domainSides(f), r));
+      const std::size_t size = plans[f]->size();
+      for (std::size_t k = 0; k < size; k += kTileSamples) tiles.push_back({f, k, std::min(kTileSamples, size - k)});
+      total += size;
+    }
+    auto run = [&](const Tile &tile) {
+      thread_local std::vector<DualVec3> values;
+      values.resize(tile.count);
+      const Patch &patch = *SurfaceAccess::patch(surface, tile.face);
+      const EvaluationPlan &plan = *plans[tile.face];
+      patch.evaluatePlanned(plan, tile.first, tile.count, values.data());
+      for (std::size_t k = 0; k < tile.count; ++k) {
+        const std::uint32_t id = layout.faceBase[tile.face] + static_cast<std::uint32_t>(tile.first + k);
+        const DualVec3 &p = values[k];
+        const Vec2 uv = plan.samples()[tile.first + k];
+        Vec3 normal = cross(p.du, p.dv);
+        // Degenerate only where Surface::evaluate takes the limit from inside.
+        if (squaredNorm(normal) <= 1e-24 * squaredNorm(p.du) * squaredNorm(p.dv))
+          normal = surface.evaluate(tile.face, uv).normal;
+        mesh.positions[id] = p.v;
+        mesh.normals[id] = normalized(normal);
+        if (record) mesh.domainPoints[id] = {tile.face, uv};
+      }
+    };
+    if (total < kSerialSamples) {
+      for (const Tile &tile : tiles) run(tile);
+    } else {
+      // One tile per task (grain 1): a tile is already ~10⁵ flops.
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles.size(), 1),
+                        [&](const tbb::blocked_range<std::size_t> &range) {
+                          for (std::size_t t = range.begin(); t < range.end(); ++t) run(tiles[t]);
+                        });
+    }
+  }
+
   std::vector<std::vector<std::array<std::uint32_t, 3>>> triangles(faces);
   tbb::parallel_for(0, faces, [&](int f) {
     const int n = surface.domainSides(f);
@@ -176,6 +231,7 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
     const std::uint32_t interiorBase = base + 1 + static_cast<std::uint32_t>(n * (r - 1));
     const std::uint32_t perTriangle = static_cast<std::uint32_t>((r - 1) * (r - 2) / 2);
     auto place = [&](std::uint32_t id, const Vec2 &uv) {
+      if (planned) return; // evaluated through the plan above
       const SurfacePoint p = surface.evaluate(f, uv);
       mesh.positions[id] = p.point;
       mesh.normals[id] = p.normal;

@@ -1,0 +1,232 @@
+#include "plans/plan.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <array>
+#include <cmath>
+#include <future>
+#include <map>
+#include <mutex>
+#include <numbers>
+
+#include "curvenet/error.hpp"
+#include "curvenet/kernels/kernels.hpp"
+#include "curvenet/tessellate.hpp"
+#include "patches/domain.hpp"
+
+namespace curvenet {
+inline namespace v1 {
+
+std::uint32_t faceInteriorCount(int n, int r) {
+  return static_cast<std::uint32_t>(1 + n * (r - 1) + n * (r - 1) * (r - 2) / 2);
+}
+
+PlanKey planKey(const SurfaceOptions &options, int sides, int resolution) {
+  Sweepline sweep = options.sweepline;
+  if (sweep == Sweepline::Auto) sweep = options.scheme == Scheme::GregoryG2 ? Sweepline::Hermite : Sweepline::Radial;
+  if (options.scheme == Scheme::CompositeRibbon) sweep = Sweepline::Auto; // CR has its own linear sweep
+  return {options.scheme, sweep, sides, resolution};
+}
+
+namespace {
+constexpr std::size_t kGrain = 1024; // samples per task when building
+
+/// The cubic Hermite sweep constants of side 0 for the batched root solver.
+kernels::SweepFrame sideZeroFrame(const RegularDomain &domain) {
+  const Vec2 p0 = domain.corner(0), e = domain.corner(1) - p0;
+  auto inFrame = [&](const Vec2 &v) { return Vec2{dot(v, e) / dot(e, e), cross(e, v) / dot(e, e)}; };
+  const Vec2 a = inFrame(domain.corner(-1) - p0), b = inFrame(domain.corner(2) - domain.corner(1));
+  kernels::SweepFrame f{a.x, a.y, b.x, b.y};
+  const double det = cross(a, b);
+  if (std::abs(det) < 1e-12) {
+    f.parallel = true;
+  } else {
+    const double alpha = cross(Vec2{1, 0}, b) / det;
+    f.apexX = a.x * alpha, f.apexY = a.y * alpha;
+  }
+  return f;
+}
+} // namespace
+
+EvaluationPlan::EvaluationPlan(const PlanKey &key) : key_(key) {
+  const int n = key.sides, r = key.resolution;
+  CURVENET_CHECK(n >= 3 && n <= 8 && r >= 1, "plan for n = " + std::to_string(n) + ", r = " + std::to_string(r));
+  const RegularDomain domain(n);
+  const std::size_t count = faceInteriorCount(n, r);
+  samples_.resize(count);
+  rotation_.resize(static_cast<std::size_t>(n) * count);
+  // The tessellator's pattern (tessellate.cpp), with the same arithmetic so
+  // that the sample positions are the same doubles.
+  const std::size_t perTriangle = static_cast<std::size_t>((r - 1) * (r - 2) / 2);
+  const std::size_t interiorBase = 1 + static_cast<std::size_t>(n) * (r - 1);
+  auto spoke = [&](int i, int k) { return 1 + static_cast<std::size_t>(((i % n + n) % n) * (r - 1) + (k - 1)); };
+  samples_[0] = {0, 0};
+  for (int i = 0; i < n; ++i) rotation_[static_cast<std::size_t>(i) * count] = 0;
+  for (int t = 0; t < n; ++t) {
+    const Vec2 p0 = domain.corner(t), p1 = domain.corner(t + 1);
+    std::size_t local = 0;
+    for (int k = 1; k < r; ++k) {
+      const Vec2 a = p0 * (1.0 - double(k) / r), b = p1 * (1.0 - double(k) / r);
+      const int m = r - k;
+      for (int j = 0; j < m; ++j) {
+        const Vec2 uv = a + (b - a) * (double(j) / m);
+        if (j == 0) {
+          samples_[spoke(t, k)] = uv;
+          for (int i = 0; i < n; ++i) rotation_[static_cast<std::size_t>(i) * count + spoke(t, k)] =
+              static_cast<std::uint32_t>(spoke(t - i, k));
+        } else {
+          const std::size_t id = interiorBase + t * perTriangle + local;
+          samples_[id] = uv;
+          for (int i = 0; i < n; ++i)
+            rotation_[static_cast<std::size_t>(i) * count + id] =
+                static_cast<std::uint32_t>(interiorBase + ((t - i + n) % n) * perTriangle + local);
+          ++local;
+        }
+      }
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    const double angle = 2 * std::numbers::pi * i / n;
+    cos_.push_back(std::cos(angle));
+    sin_.push_back(std::sin(angle));
+  }
+
+  // On a triangle the Hermite sweeplines of a side cross near the opposite
+  // corner, and on the bisector there the two roots tie (see Sweepline): a
+  // rotated sample, off by a rounding error, may pick the other one. There
+  // every side is solved at the sample itself, as Surface::evaluate does.
+  // The engine's scalar solver then decides side 0 too (its tie-breaking).
+  perSide_ = n == 3 && key.scheme != Scheme::CompositeRibbon && key.sweepline != Sweepline::Radial;
+  s_.resize(perSide_ ? n * count : count), d_.resize(count), b_.resize(count);
+  const bool cr = key.scheme == Scheme::CompositeRibbon;
+  const bool cubicHermite = !cr && key.sweepline == Sweepline::Hermite && !perSide_;
+  const kernels::SweepFrame frame = sideZeroFrame(domain);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kGrain), [&](const tbb::blocked_range<std::size_t> &range) {
+    // Side 0's cubic Hermite roots for the whole block in one batched solve.
+    std::vector<double> x, y, roots, dist;
+    if (cubicHermite) {
+      const std::size_t m = range.size();
+      x.resize(m), y.resize(m), roots.resize(m), dist.resize(m);
+      for (std::size_t k = range.begin(); k < range.end(); ++k) {
+        Dual fx, fy;
+        domain.sideFrame(0, samples_[k].x, samples_[k].y, fx, fy);
+        x[k - range.begin()] = fx.v, y[k - range.begin()] = fy.v;
+      }
+      kernels::hermiteSweepRoots(m, frame, x.data(), y.data(), roots.data(), dist.data());
+    }
+    std::vector<Dual> wachspress;
+    for (std::size_t k = range.begin(); k < range.end(); ++k) {
+      const Dual u = Dual::u(samples_[k].x), v = Dual::vCoord(samples_[k].y);
+      std::array<Dual, 8> power;
+      if (cr) {
+        domain.wachspressDistances(u, v, wachspress);
+        s_[k] = domain.linearSweepSideParameter(0, u, v);
+        d_[k] = wachspress[0];
+        for (int j = 0; j < n; ++j) power[j] = wachspress[j] * wachspress[j];
+      } else {
+        if (perSide_)
+          for (int i = 1; i < n; ++i)
+            s_[i * count + k] = domain.hermiteSweep(i, u, v, key.sweepline == Sweepline::QuinticHermite).s;
+        switch (key.sweepline) {
+        case Sweepline::Hermite:
+          s_[k] = perSide_ ? domain.hermiteSweep(0, u, v).s
+                           : domain.hermiteSweepFromRoot(0, u, v, roots[k - range.begin()]).s;
+          break;
+        case Sweepline::QuinticHermite: s_[k] = domain.hermiteSweep(0, u, v, true).s; break;
+        default: s_[k] = domain.radialSideParameter(0, u, v); break;
+        }
+        d_[k] = domain.perpendicularDistance(0, u, v);
+        const bool g2 = key.scheme == Scheme::GregoryG2;
+        for (int j = 0; j < n; ++j) {
+          const Dual distance = domain.perpendicularDistance(j, u, v);
+          power[j] = g2 ? distance * distance * distance : distance * distance;
+        }
+      }
+      // Corner products in the order Patch uses, so corner 0's blend is the
+      // same number the pointwise evaluation computes.
+      Dual total = 0.0, first = 0.0;
+      for (int i = 0; i < n; ++i) {
+        Dual product = 1.0;
+        for (int j = 0; j < n; ++j)
+          if (j != i && j != domain.wrap(i - 1)) product *= power[j];
+        if (i == 0) first = product;
+        total += product;
+      }
+      b_[k] = first / total;
+    }
+  });
+}
+
+std::size_t EvaluationPlan::memory() const {
+  return samples_.size() * sizeof(Vec2) + (s_.size() + d_.size() + b_.size()) * sizeof(Dual) +
+         rotation_.size() * sizeof(std::uint32_t);
+}
+
+namespace {
+struct PlanCache {
+  std::mutex mutex;
+  std::map<PlanKey, std::shared_future<std::shared_ptr<const EvaluationPlan>>> plans;
+};
+PlanCache &cache() {
+  static PlanCache instance;
+  return instance;
+}
+} // namespace
+
+std::shared_ptr<const EvaluationPlan> evaluationPlan(const PlanKey &key) {
+  PlanCache &c = cache();
+  std::promise<std::shared_ptr<const EvaluationPlan>> promise;
+  std::shared_future<std::shared_ptr<const EvaluationPlan>> future;
+  bool build = false;
+  {
+    std::lock_guard lock(c.mutex);
+    if (auto it = c.plans.find(key); it != c.plans.end()) {
+      future = it->second; // built, or being built by another caller: wait outside the lock
+    } else {
+      future = promise.get_future().share();
+      c.plans.emplace(key, future);
+      build = true;
+    }
+  }
+  if (build) {
+    try {
+      promise.set_value(std::make_shared<const EvaluationPlan>(key));
+    } catch (...) {
+      {
+        std::lock_guard lock(c.mutex);
+        c.plans.erase(key); // a later caller may retry
+      }
+      promise.set_exception(std::current_exception());
+    }
+  }
+  return future.get();
+}
+
+PlanCacheStats evaluationPlanCache() {
+  PlanCache &c = cache();
+  std::vector<std::shared_future<std::shared_ptr<const EvaluationPlan>>> futures;
+  {
+    std::lock_guard lock(c.mutex);
+    for (const auto &[key, future] : c.plans) futures.push_back(future);
+  }
+  PlanCacheStats stats{};
+  for (const auto &f : futures) {
+    if (f.wait_for(std::chrono::seconds(0)) != std::future_status::ready) continue;
+    try {
+      stats.bytes += f.get()->memory();
+      ++stats.plans;
+    } catch (...) {
+    }
+  }
+  return stats;
+}
+
+void clearEvaluationPlans() {
+  PlanCache &c = cache();
+  std::lock_guard lock(c.mutex);
+  c.plans.clear(); // plans in use stay alive through their shared_ptr
+}
+
+} // namespace v1
+} // namespace curvenet

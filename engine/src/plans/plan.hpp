@@ -1,0 +1,81 @@
+// Evaluation plans (DESIGN.md §4): everything a transfinite patch needs at
+// the tessellator's samples that depends only on (scheme, n, resolution,
+// sweepline) — the domain samples, side 0's parameters (s_0, d_0) and corner
+// 0's blend at each, with exact first derivatives. The pattern is n-fold
+// symmetric, so side i's data at a sample is side 0's at the sample rotated
+// by −i·2π/n (a table lookup) with the gradients turned by +i·2π/n: one
+// sweepline root solve per sample serves all n sides. Plans never touch
+// curves; a patch evaluation through a plan is ribbon evaluation at the
+// plan's parameters plus weighted sums (see Patch::evaluatePlanned).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "curvenet/surface.hpp"
+#include "patches/dual.hpp"
+
+namespace curvenet {
+inline namespace v1 {
+
+struct PlanKey {
+  Scheme scheme;        ///< gregory-g1, gregory-g2 or composite-ribbon
+  Sweepline sweepline;  ///< resolved (never Auto); ignored by composite-ribbon
+  int sides;            ///< 3 … 8
+  int resolution;       ///< rows per centre–side triangle, ≥ 1
+  friend auto operator<=>(const PlanKey &, const PlanKey &) = default;
+};
+
+class EvaluationPlan {
+public:
+  /// Builds the plan (parallel over samples; cost O(n r²) sweep solves).
+  explicit EvaluationPlan(const PlanKey &key);
+
+  const PlanKey &key() const { return key_; }
+  /// Interior samples of one face in the tessellator's vertex order: the
+  /// centre, the spokes (corner-major, level 1 … r−1), then the interior of
+  /// each centre–side triangle row by row.
+  const std::vector<Vec2> &samples() const { return samples_; }
+  std::size_t size() const { return samples_.size(); }
+
+  /// Side i's (or corner i's) quantities at sample k, by rotation of side 0's.
+  std::size_t rotated(int i, std::size_t k) const { return rotation_[static_cast<std::size_t>(i) * size() + k]; }
+  /// Gradient turned from side 0 to side i.
+  Dual turn(int i, const Dual &x) const {
+    return {x.v, cos_[i] * x.du - sin_[i] * x.dv, sin_[i] * x.du + cos_[i] * x.dv};
+  }
+  Dual side(int i, std::size_t k) const {
+    return perSide_ ? s_[static_cast<std::size_t>(i) * size() + k] : turn(i, s_[rotated(i, k)]);
+  }
+  Dual distance(int i, std::size_t k) const { return turn(i, d_[rotated(i, k)]); }
+  /// True when every side's parameters are stored (see the constructor).
+  bool perSide() const { return perSide_; }
+  /// Gregory: corner i's normalized blend B_{i,i−1}; composite-ribbon: the
+  /// normalized corner product D_{i,i−1} / Σ_j D_{j,j−1}.
+  Dual blend(int i, std::size_t k) const { return turn(i, b_[rotated(i, k)]); }
+
+  /// Bytes held.
+  std::size_t memory() const;
+
+private:
+  PlanKey key_;
+  std::vector<Vec2> samples_;
+  std::vector<Dual> s_, d_, b_;
+  std::vector<std::uint32_t> rotation_;
+  std::vector<double> cos_, sin_;
+  bool perSide_ = false;
+};
+
+/// The process-wide plan cache: concurrent lookups, one build per key (later
+/// callers of a key being built wait for it). Thread-safe.
+std::shared_ptr<const EvaluationPlan> evaluationPlan(const PlanKey &key);
+
+/// The plan key of a transfinite surface's face with `sides` domain sides.
+PlanKey planKey(const SurfaceOptions &options, int sides, int resolution);
+
+/// Interior samples of an n-gon face at resolution r (the tessellator's count).
+std::uint32_t faceInteriorCount(int n, int r);
+
+} // namespace v1
+} // namespace curvenet

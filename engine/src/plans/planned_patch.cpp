@@ -1,0 +1,204 @@
+// Patch evaluation through an evaluation plan: per side, the ribbon jets at
+// the plan's side parameters (the only geometry-dependent work); then the
+// Gregory formula (paper 000 eqs. 16–18, 22) as structure-of-arrays passes
+// of the SIMD kernels — two ribbon points per corner, their blend-weighted
+// sum, and the correction patch as blend × correction weights times the
+// corner vectors.
+#include <algorithm>
+#include <array>
+#include <vector>
+
+#include "curvenet/error.hpp"
+#include "curvenet/kernels/kernels.hpp"
+#include "patches/patch.hpp"
+#include "plans/plan.hpp"
+
+namespace curvenet {
+inline namespace v1 {
+
+namespace {
+
+/// Per-thread structure-of-arrays scratch of `count` doubles per array.
+struct Scratch {
+  std::vector<double> data;
+  std::size_t count = 0, used = 0;
+  void reset(std::size_t samples, std::size_t arrays) {
+    count = samples, used = 0;
+    if (data.size() < samples * arrays) data.resize(samples * arrays);
+  }
+  double *take() {
+    double *p = data.data() + used * count;
+    ++used;
+    return p;
+  }
+};
+
+struct DualArray {
+  double *v, *du, *dv;
+  void take(Scratch &s) { v = s.take(), du = s.take(), dv = s.take(); }
+  kernels::DualSpan span() const { return {v, du, dv}; }
+  void set(std::size_t k, const Dual &x) { v[k] = x.v, du[k] = x.du, dv[k] = x.dv; }
+};
+
+struct Vec3Array {
+  double *c[3];
+  void take(Scratch &s) { c[0] = s.take(), c[1] = s.take(), c[2] = s.take(); }
+  void set(std::size_t k, const Vec3 &x) { c[0][k] = x.x, c[1][k] = x.y, c[2][k] = x.z; }
+};
+
+struct JetArrays {
+  Vec3Array P, dP, T, dT, C, dC;
+  kernels::RibbonJets view(bool parabolic) const {
+    kernels::RibbonJets j;
+    for (int c = 0; c < 3; ++c) {
+      j.P[c] = P.c[c], j.dP[c] = dP.c[c], j.T[c] = T.c[c], j.dT[c] = dT.c[c];
+      if (parabolic) j.C[c] = C.c[c], j.dC[c] = dC.c[c];
+    }
+    return j;
+  }
+};
+
+/// (x a + y b) / (x + y) as weights on a and b.
+inline void rationalWeights(Dual x, Dual y, Dual &wa, Dual &wb) {
+  const Dual sum = x + y;
+  if (sum.v == 0) { // the corner itself (never a plan sample): the finite limit
+    wa = wb = 0.5;
+    return;
+  }
+  wa = x / sum, wb = y / sum;
+}
+
+constexpr int kMaxSides = 8;
+constexpr int kMaxCornerVectors = 17; // a00 and the eight (a, b) pairs of eq. 22
+
+} // namespace
+
+void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::size_t count, DualVec3 *out) const {
+  const int n = domain_.sides();
+  CURVENET_CHECK(plan.key().sides == n && plan.key().scheme == options_.scheme,
+                 "plan for " + std::to_string(plan.key().sides) + " sides used on a patch with " + std::to_string(n));
+  if (options_.scheme == Scheme::CompositeRibbon) {
+    std::array<Dual, kMaxSides> s, d, q, blend;
+    for (std::size_t k = 0; k < count; ++k) {
+      for (int i = 0; i < n; ++i) s[i] = plan.side(i, first + k), d[i] = plan.distance(i, first + k),
+                                  q[i] = plan.blend(i, first + k);
+      for (int i = 0; i < n; ++i) blend[i] = q[i] + q[domain_.wrap(i + 1)];
+      out[k] = compositeRibbonFrom(s.data(), d.data(), blend.data());
+    }
+    return;
+  }
+
+  const bool g2 = options_.scheme == Scheme::GregoryG2;
+  thread_local Scratch scratch;
+  const std::size_t jetArrays = g2 ? 18 : 12;
+  scratch.reset(count, static_cast<std::size_t>(n) * (6 + jetArrays) + 3 + 9 + 9 + 3 * kMaxCornerVectors);
+  std::array<DualArray, kMaxSides> side, blend;
+  std::array<JetArrays, kMaxSides> jets;
+  for (int i = 0; i < n; ++i) {
+    side[i].take(scratch), blend[i].take(scratch);
+    jets[i].P.take(scratch), jets[i].dP.take(scratch), jets[i].T.take(scratch), jets[i].dT.take(scratch);
+    if (g2) jets[i].C.take(scratch), jets[i].dC.take(scratch);
+  }
+  DualArray across;
+  across.take(scratch);
+  double *term[9], *acc[9];
+  for (double *&p : term) p = scratch.take();
+  for (double *&p : acc) p = scratch.take(), std::fill(p, p + count, 0.0);
+  std::array<DualArray, kMaxCornerVectors> weight;
+  for (DualArray &w : weight) w.take(scratch);
+  const kernels::DualVec3Span termOut{{term[0], term[1], term[2]}, {term[3], term[4], term[5]}, {term[6], term[7], term[8]}};
+  const kernels::ConstDualVec3Span termIn{{term[0], term[1], term[2]}, {term[3], term[4], term[5]}, {term[6], term[7], term[8]}};
+  const kernels::DualVec3Span accOut{{acc[0], acc[1], acc[2]}, {acc[3], acc[4], acc[5]}, {acc[6], acc[7], acc[8]}};
+
+  // Geometry: each side's ribbon at the plan's side parameters (batch per side).
+  for (int i = 0; i < n; ++i)
+    for (std::size_t k = 0; k < count; ++k) {
+      const Dual s = plan.side(i, first + k);
+      side[i].set(k, s);
+      blend[i].set(k, plan.blend(i, first + k));
+      const double at = ribbons_[i].snap(std::clamp(s.v, 0.0, 1.0));
+      if (g2) {
+        const ParabolicJet j = parabolic_[i].at(at);
+        jets[i].P.set(k, j.P), jets[i].dP.set(k, j.dP), jets[i].T.set(k, j.T), jets[i].dT.set(k, j.dT);
+        jets[i].C.set(k, j.C), jets[i].dC.set(k, j.dC);
+      } else {
+        const RibbonJet j = ribbons_[i].at(at);
+        jets[i].P.set(k, j.P), jets[i].dP.set(k, j.dP), jets[i].T.set(k, j.T), jets[i].dT.set(k, j.dT);
+      }
+    }
+
+  for (int i = 0; i < n; ++i) {
+    const int prev = domain_.wrap(i - 1);
+    // I_{i,i−1} = R_{i−1}(s_{i−1}, s_i) + R_i(s_i, 1 − s_{i−1}) − Q(s_i, 1 − s_{i−1}), weighted by B_{i,i−1}.
+    for (std::size_t k = 0; k < count; ++k)
+      across.v[k] = 1.0 - side[prev].v[k], across.du[k] = -side[prev].du[k], across.dv[k] = -side[prev].dv[k];
+    kernels::ribbonPoints(count, jets[prev].view(g2), side[prev].span(), side[i].span(), termOut);
+    kernels::accumulate(count, blend[i].span(), termIn, accOut);
+    kernels::ribbonPoints(count, jets[i].view(g2), side[i].span(), across.span(), termOut);
+    kernels::accumulate(count, blend[i].span(), termIn, accOut);
+
+    // Correction patch: −B Q = Σ_c (−B ω_c) V_c over the corner vectors V_c.
+    std::array<Vec3, kMaxCornerVectors> vectors;
+    int used = 0;
+    if (g2) {
+      const SideEndData &end = parabolic_[prev].end(), &start = parabolic_[i].start();
+      // The corner data of cornerData2 (patch.cpp): a from R_{i−1}(1 − t, s), b from R_i(s, t).
+      Vec3 a[3][3], b[3][3];
+      a[0][0] = start.P;
+      a[1][0] = end.T, a[2][0] = end.C;
+      a[0][1] = -end.dP, a[1][1] = -end.dT, a[2][1] = -end.dC;
+      a[0][2] = end.ddP, a[1][2] = end.ddT, a[2][2] = end.ddC;
+      b[1][0] = start.dP, b[2][0] = start.ddP;
+      b[0][1] = start.T, b[1][1] = start.dT, b[2][1] = start.ddT;
+      b[0][2] = start.C, b[1][2] = start.dC, b[2][2] = start.ddC;
+      vectors[used++] = a[0][0];
+      for (int p = 0; p <= 2; ++p)
+        for (int r = 0; r <= 2; ++r)
+          if (p || r) vectors[used++] = a[p][r], vectors[used++] = b[p][r];
+      constexpr double inverseFactorial[3] = {1.0, 1.0, 0.5};
+      for (std::size_t k = 0; k < count; ++k) {
+        const Dual s{side[i].v[k], side[i].du[k], side[i].dv[k]}, t{across.v[k], across.du[k], across.dv[k]};
+        const Dual minusB = -Dual{blend[i].v[k], blend[i].du[k], blend[i].dv[k]};
+        const Dual sp[4] = {1.0, s, s * s, s * s * s}, tp[4] = {1.0, t, t * t, t * t * t};
+        int c = 0;
+        weight[c++].set(k, minusB);
+        for (int p = 0; p <= 2; ++p)
+          for (int r = 0; r <= 2; ++r) {
+            if (!p && !r) continue;
+            Dual wa, wb;
+            rationalWeights(sp[3 - p], tp[3 - r], wa, wb);
+            const Dual scale = minusB * sp[p] * tp[r] * Dual(inverseFactorial[p] * inverseFactorial[r]);
+            weight[c++].set(k, scale * wa);
+            weight[c++].set(k, scale * wb);
+          }
+      }
+    } else {
+      const RibbonJet start = ribbons_[i].at(0.0), end = ribbons_[prev].at(1.0);
+      // CornerData{a00, a10, a01, a11, b10, b01, b11} of Patch::gregory.
+      vectors = {start.P, end.T, start.dP, -end.dP, start.T, -end.dT, start.dT};
+      used = 7;
+      for (std::size_t k = 0; k < count; ++k) {
+        const Dual s{side[i].v[k], side[i].du[k], side[i].dv[k]}, t{across.v[k], across.du[k], across.dv[k]};
+        const Dual minusB = -Dual{blend[i].v[k], blend[i].du[k], blend[i].dv[k]};
+        // Q = a00 + s W(a10, b10; s, t²) + t W(a01, b01; s², t) + s t W(a11, b11; s, t).
+        Dual wa, wb;
+        weight[0].set(k, minusB);
+        rationalWeights(s, t * t, wa, wb);
+        weight[1].set(k, minusB * s * wa), weight[2].set(k, minusB * s * wb);
+        rationalWeights(s * s, t, wa, wb);
+        weight[3].set(k, minusB * t * wa), weight[4].set(k, minusB * t * wb);
+        rationalWeights(s, t, wa, wb);
+        weight[5].set(k, minusB * s * t * wa), weight[6].set(k, minusB * s * t * wb);
+      }
+    }
+    for (int c = 0; c < used; ++c) {
+      const double v[3] = {vectors[c].x, vectors[c].y, vectors[c].z};
+      kernels::accumulateConstant(count, weight[c].span(), v, accOut);
+    }
+  }
+  for (std::size_t k = 0; k < count; ++k)
+    out[k] = {{acc[0][k], acc[1][k], acc[2][k]}, {acc[3][k], acc[4][k], acc[5][k]}, {acc[6][k], acc[7][k], acc[8][k]}};
+}
+
+} // namespace v1
+} // namespace curvenet

@@ -1,0 +1,317 @@
+// Kernels of curvenet/kernels/kernels.hpp, written once over a Highway
+// descriptor D: ScalableTag<double> gives the full width of each compiled
+// instruction set, CappedTag<double, 1> the width-1 scalar reference (also
+// used for the tail of every batch). This file is compiled once per target
+// (foreach_target); run-time dispatch picks the CPU's best.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "kernels.cpp"
+#include <hwy/foreach_target.h> // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include <cmath>
+
+#include "curvenet/kernels/kernels.hpp"
+
+// Argument bundles, shared by every target's instance (defined once).
+#ifndef CURVENET_KERNELS_ARGS
+#define CURVENET_KERNELS_ARGS
+namespace curvenet {
+namespace kernels_impl {
+namespace ck = curvenet::kernels;
+struct RibbonArgs {
+  const ck::RibbonJets *jets;
+  ck::DualSpan sigma, delta;
+  ck::DualVec3Span out;
+};
+
+struct AccumulateArgs {
+  ck::DualSpan w;
+  ck::ConstDualVec3Span x; ///< null v[0]: the constant c instead
+  double c[3];
+  ck::DualVec3Span out;
+};
+
+struct SweepArgs {
+  ck::SweepFrame frame;
+  const double *x, *y;
+  double *s, *d;
+};
+} // namespace kernels_impl
+} // namespace curvenet
+#endif
+
+HWY_BEFORE_NAMESPACE();
+namespace curvenet {
+namespace kernels_impl {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+namespace ck = curvenet::kernels;
+
+/// Runs body(d, k) over [0, count) in vectors of d's width, the tail at width 1.
+template <class D, class Body> HWY_INLINE void forEachVector(D d, std::size_t count, const Body &body) {
+  const std::size_t lanes = hn::Lanes(d);
+  std::size_t k = 0;
+  for (; k + lanes <= count; k += lanes) body(d, k);
+  const hn::CappedTag<double, 1> one;
+  for (; k < count; ++k) body(one, k);
+}
+
+template <class D> HWY_INLINE void ribbonBody(D d, std::size_t k, const RibbonArgs &a) {
+  const auto su = hn::LoadU(d, a.sigma.du + k), sv = hn::LoadU(d, a.sigma.dv + k);
+  const auto dl = hn::LoadU(d, a.delta.v + k), dlu = hn::LoadU(d, a.delta.du + k), dlv = hn::LoadU(d, a.delta.dv + k);
+  const bool parabolic = a.jets->C[0] != nullptr;
+  const auto half = hn::Set(d, 0.5);
+  const auto h = hn::Mul(half, hn::Mul(dl, dl)); // ½ δ²
+  for (int c = 0; c < 3; ++c) {
+    const auto P = hn::LoadU(d, a.jets->P[c] + k), dP = hn::LoadU(d, a.jets->dP[c] + k);
+    const auto T = hn::LoadU(d, a.jets->T[c] + k), dT = hn::LoadU(d, a.jets->dT[c] + k);
+    // value P + δ T; ∂ = σ' (P' + δ T') + δ' T
+    auto value = hn::MulAdd(dl, T, P);
+    auto slope = hn::MulAdd(dl, dT, dP);
+    auto across = T;
+    if (parabolic) {
+      // + ½ δ² C; ∂ gains σ' ½ δ² C' + δ' δ C
+      const auto C = hn::LoadU(d, a.jets->C[c] + k), dC = hn::LoadU(d, a.jets->dC[c] + k);
+      value = hn::MulAdd(h, C, value);
+      slope = hn::MulAdd(h, dC, slope);
+      across = hn::MulAdd(dl, C, T);
+    }
+    hn::StoreU(value, d, a.out.v[c] + k);
+    hn::StoreU(hn::MulAdd(su, slope, hn::Mul(dlu, across)), d, a.out.du[c] + k);
+    hn::StoreU(hn::MulAdd(sv, slope, hn::Mul(dlv, across)), d, a.out.dv[c] + k);
+  }
+}
+
+void RibbonPoints(std::size_t count, const RibbonArgs &args, bool reference) {
+  auto body = [&](auto d, std::size_t k) { ribbonBody(d, k, args); };
+  if (reference) forEachVector(hn::CappedTag<double, 1>(), count, body);
+  else forEachVector(hn::ScalableTag<double>(), count, body);
+}
+
+template <class D> HWY_INLINE void accumulateBody(D d, std::size_t k, const AccumulateArgs &a) {
+  const auto w = hn::LoadU(d, a.w.v + k), wu = hn::LoadU(d, a.w.du + k), wv = hn::LoadU(d, a.w.dv + k);
+  for (int c = 0; c < 3; ++c) {
+    auto v = hn::LoadU(d, a.out.v[c] + k), u = hn::LoadU(d, a.out.du[c] + k), dv = hn::LoadU(d, a.out.dv[c] + k);
+    if (a.x.v[0]) {
+      const auto x = hn::LoadU(d, a.x.v[c] + k), xu = hn::LoadU(d, a.x.du[c] + k), xv = hn::LoadU(d, a.x.dv[c] + k);
+      v = hn::MulAdd(w, x, v);
+      u = hn::MulAdd(wu, x, hn::MulAdd(w, xu, u));
+      dv = hn::MulAdd(wv, x, hn::MulAdd(w, xv, dv));
+    } else {
+      const auto x = hn::Set(d, a.c[c]);
+      v = hn::MulAdd(w, x, v);
+      u = hn::MulAdd(wu, x, u);
+      dv = hn::MulAdd(wv, x, dv);
+    }
+    hn::StoreU(v, d, a.out.v[c] + k);
+    hn::StoreU(u, d, a.out.du[c] + k);
+    hn::StoreU(dv, d, a.out.dv[c] + k);
+  }
+}
+
+void Accumulate(std::size_t count, const AccumulateArgs &args, bool reference) {
+  auto body = [&](auto d, std::size_t k) { accumulateBody(d, k, args); };
+  if (reference) forEachVector(hn::CappedTag<double, 1>(), count, body);
+  else forEachVector(hn::ScalableTag<double>(), count, body);
+}
+
+/// Polynomial p(s) = Σ c_j s^j of degree ≤ 4, Horner.
+template <class V> HWY_INLINE V horner(const V (&c)[5], V s) {
+  return hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(c[4], s, c[3]), s, c[2]), s, c[1]), s, c[0]);
+}
+
+/// Root of p on [lo, hi] where p changes sign there (mask `found`), by
+/// bisection to the last bit of [0, 1]; `lo` elsewhere.
+template <class D, class V> HWY_INLINE V bisect(D d, const V (&p)[5], V lo, V hi, int iterations, decltype(hn::Lt(lo, lo)) &found) {
+  const auto zero = hn::Zero(d);
+  V flo = horner(p, lo);
+  const V fhi = horner(p, hi);
+  found = hn::AndNot(hn::Eq(flo, zero), hn::Xor(hn::Lt(flo, zero), hn::Lt(fhi, zero)));
+  V a = lo, b = hi;
+  const auto half = hn::Set(d, 0.5);
+  for (int it = 0; it < iterations; ++it) {
+    const V mid = hn::Mul(half, hn::Add(a, b));
+    const V fm = horner(p, mid);
+    const auto keepSign = hn::Not(hn::Xor(hn::Lt(fm, zero), hn::Lt(flo, zero)));
+    a = hn::IfThenElse(keepSign, mid, a);
+    flo = hn::IfThenElse(keepSign, fm, flo);
+    b = hn::IfThenElse(keepSign, b, mid);
+  }
+  return hn::IfThenElse(found, hn::Mul(half, hn::Add(a, b)), lo);
+}
+
+template <class D> HWY_INLINE void sweepBody(D d, std::size_t k, const SweepArgs &a) {
+  using V = hn::Vec<D>;
+  const ck::SweepFrame &f = a.frame;
+  const V x = hn::LoadU(d, a.x + k), y = hn::LoadU(d, a.y + k);
+  const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
+  const V ax = hn::Set(d, f.ax), ay = hn::Set(d, f.ay), bx = hn::Set(d, f.bx), by = hn::Set(d, f.by);
+  const V cx = hn::Sub(ax, bx), cy = hn::Sub(ay, by);
+  // w(s) = b + c H(s) because H(1 − s) = 1 − H(s) for the cubic Hermite, so
+  // F(s) = (A0 + A1 s) + (B0 + B1 s) H(s) with the coefficients below.
+  const V A0 = hn::Sub(hn::Mul(x, by), hn::Mul(y, bx)), A1 = hn::Neg(by);
+  const V B0 = hn::Sub(hn::Mul(x, cy), hn::Mul(y, cx)), B1 = hn::Neg(cy);
+  const V F[5] = {hn::Add(A0, B0), hn::Add(A1, B1), hn::Mul(hn::Set(d, -3.0), B0),
+                  hn::Sub(hn::Add(B0, B0), hn::Mul(hn::Set(d, 3.0), B1)), hn::Add(B1, B1)};
+  const V F1[5] = {F[1], hn::Add(F[2], F[2]), hn::Mul(hn::Set(d, 3.0), F[3]), hn::Mul(hn::Set(d, 4.0), F[4]), zero};
+  const V F2[5] = {F1[1], hn::Add(F1[2], F1[2]), hn::Mul(hn::Set(d, 3.0), F1[3]), zero, zero};
+  // Derivative cascade: the root of F''' (linear) splits [0, 1] where F'' is
+  // monotone, F'' roots where F' is, F' roots where F is; each monotone
+  // piece holds at most one root.
+  const auto hasCubic = hn::Gt(hn::Abs(F2[2]), hn::Set(d, 1e-300));
+  const V r3 = hn::IfThenElse(hasCubic, hn::Min(one, hn::Max(zero, hn::Div(hn::Neg(F2[1]), hn::Add(F2[2], F2[2])))),
+                              zero);
+  decltype(hn::Lt(x, x)) found;
+  const V r2a = bisect(d, F2, zero, r3, 40, found);
+  const V r2b = bisect(d, F2, r3, one, 40, found);
+  // With no root a piece returns its start, so the breakpoints stay sorted.
+  const V r1a = bisect(d, F1, zero, r2a, 40, found);
+  const V r1b = bisect(d, F1, r2a, r2b, 40, found);
+  const V r1c = bisect(d, F1, r2b, one, 40, found);
+  const V bp[5] = {zero, r1a, r1b, r1c, one};
+
+  // Candidate rule of the scalar solver: d ≥ 0, orientation-preserving
+  // preferred, nearest the radial parameter.
+  V radial;
+  if (f.parallel) radial = hn::Sub(x, hn::Mul(y, hn::Set(d, f.ax / f.ay)));
+  else {
+    const V px = hn::Set(d, f.apexX), py = hn::Set(d, f.apexY);
+    radial = hn::Sub(px, hn::Div(hn::Mul(py, hn::Sub(x, px)), hn::Sub(y, py)));
+  }
+  V best = hn::Set(d, -1.0), bestD = zero, bestScore = hn::Set(d, INFINITY);
+  const V two = hn::Set(d, 2.0), six = hn::Set(d, 6.0);
+  auto consider = [&](V s, decltype(found) valid) {
+    // H(s) = 2s³ − 3s² + 1, H'(s) = 6s² − 6s
+    const V H = hn::MulAdd(hn::Mul(s, s), hn::MulAdd(two, s, hn::Set(d, -3.0)), one);
+    const V dH = hn::Mul(six, hn::Mul(s, hn::Sub(s, one)));
+    const V wx = hn::MulAdd(cx, H, bx), wy = hn::MulAdd(cy, H, by);
+    const V sx = hn::Mul(cx, dH), sy = hn::Mul(cy, dH);
+    const auto useX = hn::Gt(hn::Abs(wx), hn::Abs(wy));
+    const V dist = hn::IfThenElse(useX, hn::Div(hn::Sub(x, s), wx), hn::Div(y, wy));
+    const V jac = hn::Sub(hn::Mul(hn::MulAdd(dist, sx, one), wy), hn::Mul(hn::Mul(dist, sy), wx));
+    const V penalty = hn::IfThenElse(hn::Gt(jac, hn::Set(d, 1e-9)), zero, two);
+    const V score = hn::Add(hn::Abs(hn::Sub(s, radial)), penalty);
+    const auto take = hn::And(hn::And(valid, hn::Ge(dist, hn::Set(d, -1e-9))), hn::Lt(score, bestScore));
+    best = hn::IfThenElse(take, s, best);
+    bestD = hn::IfThenElse(take, dist, bestD);
+    bestScore = hn::IfThenElse(take, score, bestScore);
+  };
+  // Roots exactly at an end of [0, 1] (points on the neighbouring sides) may
+  // show no sign change after rounding: accept |F| within a tolerance there.
+  const double abNorm = std::hypot(f.ax, f.ay) + std::hypot(f.bx, f.by);
+  const V tolerance = hn::Mul(hn::Set(d, 1e-13 * abNorm), hn::Add(one, hn::Add(hn::Abs(x), hn::Abs(y))));
+  consider(zero, hn::Le(hn::Abs(horner(F, zero)), tolerance));
+  consider(one, hn::Le(hn::Abs(horner(F, one)), tolerance));
+  for (int j = 0; j < 4; ++j) {
+    const V root = bisect(d, F, bp[j], bp[j + 1], 56, found);
+    consider(root, found);
+  }
+  const auto none = hn::Lt(best, zero);
+  if (!hn::AllFalse(d, none)) {
+    // Outside the domain: the nearest base point, as the scalar solver does.
+    const V s = hn::Min(one, hn::Max(zero, x));
+    const V H = hn::MulAdd(hn::Mul(s, s), hn::MulAdd(two, s, hn::Set(d, -3.0)), one);
+    const V wx = hn::MulAdd(cx, H, bx), wy = hn::MulAdd(cy, H, by);
+    const V dist = hn::IfThenElse(hn::Gt(hn::Abs(wx), hn::Abs(wy)), hn::Div(hn::Sub(x, s), wx), hn::Div(y, wy));
+    best = hn::IfThenElse(none, s, best);
+    bestD = hn::IfThenElse(none, dist, bestD);
+  }
+  hn::StoreU(best, d, a.s + k);
+  hn::StoreU(bestD, d, a.d + k);
+}
+
+void SweepRoots(std::size_t count, const SweepArgs &args, bool reference) {
+  auto body = [&](auto d, std::size_t k) { sweepBody(d, k, args); };
+  if (reference) forEachVector(hn::CappedTag<double, 1>(), count, body);
+  else forEachVector(hn::ScalableTag<double>(), count, body);
+}
+
+std::size_t Lanes() { return hn::Lanes(hn::ScalableTag<double>()); }
+
+} // namespace HWY_NAMESPACE
+} // namespace kernels_impl
+} // namespace curvenet
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+#include <hwy/targets.h>
+
+namespace curvenet {
+namespace kernels_impl {
+HWY_EXPORT(RibbonPoints);
+HWY_EXPORT(Accumulate);
+HWY_EXPORT(SweepRoots);
+HWY_EXPORT(Lanes);
+
+namespace {
+/// Index into the dispatch tables: the best target, the baseline for the
+/// scalar reference (its width-1 instance), or the one requested.
+std::size_t tableIndex(std::int64_t width, bool &reference) {
+  reference = width == kernels::kScalarReference;
+  if (width == kernels::kBestWidth || reference) {
+    // Resolve the CPU's choice (the first dynamic call initializes it); the
+    // reference is that target's width-1 instance.
+    (void)HWY_DYNAMIC_DISPATCH(Lanes)();
+    return hwy::GetChosenTarget().GetIndex();
+  }
+  const std::int64_t mask = HWY_CHOSEN_TARGET_SHIFT(width) | HWY_CHOSEN_TARGET_MASK_SCALAR;
+  return hwy::Num0BitsBelowLS1Bit_Nonzero64(static_cast<std::uint64_t>(mask & HWY_CHOSEN_TARGET_MASK_TARGETS));
+}
+} // namespace
+} // namespace kernels_impl
+
+inline namespace v1 {
+namespace kernels {
+using namespace curvenet::kernels_impl;
+
+std::vector<Width> availableWidths() {
+  std::vector<Width> widths{{kScalarReference, "scalar", 1}};
+  for (std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
+    bool reference;
+    const std::size_t lanes = HWY_DISPATCH_TABLE(Lanes)[tableIndex(target, reference)]();
+    widths.push_back({target, hwy::TargetName(target), lanes});
+  }
+  return widths;
+}
+
+Width bestWidth() {
+  bool reference;
+  const std::size_t index = tableIndex(kBestWidth, reference);
+  for (const Width &w : availableWidths()) {
+    bool r;
+    if (w.id != kScalarReference && tableIndex(w.id, r) == index) return w;
+  }
+  return availableWidths().back();
+}
+
+void ribbonPoints(std::size_t count, const RibbonJets &jets, DualSpan sigma, DualSpan delta, DualVec3Span out,
+                  std::int64_t width) {
+  bool reference;
+  const std::size_t index = tableIndex(width, reference);
+  HWY_DISPATCH_TABLE(RibbonPoints)[index](count, {&jets, sigma, delta, out}, reference);
+}
+
+void accumulate(std::size_t count, DualSpan w, ConstDualVec3Span x, DualVec3Span out, std::int64_t width) {
+  bool reference;
+  const std::size_t index = tableIndex(width, reference);
+  HWY_DISPATCH_TABLE(Accumulate)[index](count, {w, x, {0, 0, 0}, out}, reference);
+}
+
+void accumulateConstant(std::size_t count, DualSpan w, const double c[3], DualVec3Span out, std::int64_t width) {
+  bool reference;
+  const std::size_t index = tableIndex(width, reference);
+  HWY_DISPATCH_TABLE(Accumulate)[index](count, {w, {{nullptr, nullptr, nullptr}, {}, {}}, {c[0], c[1], c[2]}, out},
+                                        reference);
+}
+
+void hermiteSweepRoots(std::size_t count, const SweepFrame &frame, const double *x, const double *y, double *s,
+                       double *d, std::int64_t width) {
+  bool reference;
+  const std::size_t index = tableIndex(width, reference);
+  HWY_DISPATCH_TABLE(SweepRoots)[index](count, {frame, x, y, s, d}, reference);
+}
+
+} // namespace kernels
+} // namespace v1
+} // namespace curvenet
+#endif

@@ -1,0 +1,112 @@
+// Evaluation plans: rotation symmetry of the side parameters, the cache
+// (one build per key under concurrent lookups), and plan-based tessellation
+// against the pointwise Surface::evaluate path on every built-in and scheme.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstring>
+#include <set>
+#include <thread>
+
+#include "curvenet/builtins.hpp"
+#include "curvenet/tessellate.hpp"
+#include "patches/domain.hpp"
+#include "plans/plan.hpp"
+
+using namespace curvenet;
+
+namespace {
+
+std::vector<SurfaceOptions> schemes() {
+  return {{Scheme::GregoryG1, Sweepline::Radial},
+          {Scheme::GregoryG1, Sweepline::Hermite},
+          {Scheme::CompositeRibbon},
+          {Scheme::GregoryG2, Sweepline::Hermite},
+          {Scheme::GregoryG2, Sweepline::QuinticHermite}};
+}
+
+std::string label(const SurfaceOptions &o) {
+  return schemeName(o.scheme) + (o.sweepline == Sweepline::Radial ? "/radial"
+                                 : o.sweepline == Sweepline::QuinticHermite ? "/quintic" : "/hermite");
+}
+
+} // namespace
+
+TEST(EvaluationPlan, RotatedSideZeroDataIsEverySidesOwn) {
+  // Side i at sample k computed directly equals side 0 at the rotated sample,
+  // gradients turned: the n-fold symmetry that lets one solve serve n sides.
+  for (int n = 3; n <= 8; ++n)
+    for (const SurfaceOptions &o : schemes()) {
+      if (o.scheme == Scheme::CompositeRibbon) continue;
+      const PlanKey key = planKey(o, n, 9);
+      const EvaluationPlan plan(key);
+      const RegularDomain domain(n);
+      const bool quintic = key.sweepline == Sweepline::QuinticHermite;
+      for (std::size_t k = 0; k < plan.size(); ++k) {
+        const Dual u = Dual::u(plan.samples()[k].x), v = Dual::vCoord(plan.samples()[k].y);
+        for (int i = 0; i < n; ++i) {
+          const Dual direct = key.sweepline == Sweepline::Radial ? domain.radialSideParameter(i, u, v)
+                                                                 : domain.hermiteSweep(i, u, v, quintic).s;
+          const Dual planned = plan.side(i, k);
+          ASSERT_NEAR(planned.v, direct.v, 1e-12) << label(o) << " n=" << n << " k=" << k << " side " << i;
+          ASSERT_NEAR(planned.du, direct.du, 1e-9 * (1 + std::abs(direct.du)));
+          ASSERT_NEAR(planned.dv, direct.dv, 1e-9 * (1 + std::abs(direct.dv)));
+          const Dual distance = domain.perpendicularDistance(i, u, v), planDistance = plan.distance(i, k);
+          ASSERT_NEAR(planDistance.v, distance.v, 1e-13);
+          ASSERT_NEAR(planDistance.du, distance.du, 1e-12);
+        }
+      }
+    }
+}
+
+TEST(EvaluationPlan, CacheBuildsEachKeyOnceUnderConcurrentLookups) {
+  clearEvaluationPlans();
+  const PlanKey key{Scheme::GregoryG2, Sweepline::Hermite, 5, 40};
+  std::vector<std::shared_ptr<const EvaluationPlan>> got(8);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 8; ++t) threads.emplace_back([&, t] { got[t] = evaluationPlan(key); });
+  for (auto &t : threads) t.join();
+  for (const auto &p : got) EXPECT_EQ(p.get(), got[0].get());
+  EXPECT_EQ(evaluationPlanCache().plans, 1u);
+  EXPECT_GT(evaluationPlanCache().bytes, got[0]->size() * 72);
+  clearEvaluationPlans();
+  EXPECT_EQ(evaluationPlanCache().plans, 0u);
+  EXPECT_NE(evaluationPlan(key).get(), got[0].get()); // rebuilt after clearing
+}
+
+TEST(PlannedTessellation, MatchesPointwiseEvaluationOnEveryBuiltinAndScheme) {
+  for (const BuiltinInfo &info : builtinNetworks()) {
+    const Network network = Network::build(builtinNetwork(info.name));
+    for (const SurfaceOptions &o : schemes()) {
+      const Surface surface = Surface::build(network, o);
+      TessellationOptions planned{7, 0, false, true}, pointwise{7, 0, false, false};
+      const Mesh a = tessellate(surface, planned), b = tessellate(surface, pointwise);
+      ASSERT_EQ(a.positions.size(), b.positions.size());
+      ASSERT_EQ(a.triangles, b.triangles);
+      BoundingBox box;
+      for (const Vec3 &p : b.positions) box.add(p);
+      double worst = 0, worstNormal = 0;
+      for (size_t k = 0; k < a.positions.size(); ++k) {
+        worst = std::max(worst, norm(a.positions[k] - b.positions[k]));
+        worstNormal = std::max(worstNormal, norm(a.normals[k] - b.normals[k]));
+      }
+      EXPECT_LE(worst, 1e-12 * box.diagonal()) << info.name << " " << label(o);
+      EXPECT_LE(worstNormal, 1e-9) << info.name << " " << label(o);
+    }
+  }
+}
+
+TEST(PlannedTessellation, BytesDoNotDependOnThreads) {
+  const Network network = Network::build(builtinNetwork("pentagon"));
+  for (const SurfaceOptions &o : schemes()) {
+    const Surface surface = Surface::build(network, o);
+    // Large enough for the parallel path and several tiles per face.
+    const Mesh one = tessellate(surface, {48, 1}), two = tessellate(surface, {48, 2}), all = tessellate(surface, {48, 0});
+    ASSERT_EQ(one.positions.size(), two.positions.size());
+    EXPECT_EQ(0, std::memcmp(one.positions.data(), two.positions.data(), one.positions.size() * sizeof(Vec3)))
+        << label(o);
+    EXPECT_EQ(0, std::memcmp(one.normals.data(), two.normals.data(), one.normals.size() * sizeof(Vec3))) << label(o);
+    EXPECT_EQ(0, std::memcmp(one.positions.data(), all.positions.data(), one.positions.size() * sizeof(Vec3)));
+    EXPECT_EQ(one.triangles, two.triangles);
+  }
+}

@@ -1,0 +1,156 @@
+// curvenet bench [INPUT] [--resolution R] [--points P] [--threads T] [--json]
+//
+// The G¹-vs-G² cost comparison in the form of paper 000 Table 1, measured in
+// one run: per scheme the ribbon/fence construction time, the pointwise
+// evaluation of P random domain points, and the tessellation at resolution
+// R through evaluation plans — cold (plans built), warm (plans cached), on
+// one thread and on all threads.
+#include <nlohmann/json.hpp>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <random>
+
+#include "commands.hpp"
+#include "curvenet/builtins.hpp"
+#include "curvenet/io.hpp"
+#include "curvenet/kernels/kernels.hpp"
+#include "curvenet/tessellate.hpp"
+
+namespace curvenet::cli {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// Fastest of repeated runs of f (at least `repeats`, and until ~0.3 s spent).
+template <class F> double fastest(F &&f, int repeats = 3) {
+  double best = INFINITY, spent = 0;
+  for (int k = 0; k < repeats || (spent < 0.3 && k < 50); ++k) {
+    const auto t0 = Clock::now();
+    f();
+    const double s = std::chrono::duration<double>(Clock::now() - t0).count();
+    best = std::min(best, s), spent += s;
+  }
+  return best;
+}
+
+struct SchemeFigures {
+  std::string name;
+  double build = 0;          ///< fences and ribbons (Surface::build), s
+  double pointwise = 0;      ///< `points` random domain points through Surface::evaluate, s
+  std::size_t meshPoints = 0;
+  double cold = 0, warm = 0; ///< tessellation on one thread, plans built / cached, s
+  double warmThreads = 0;    ///< warm on all threads, s
+  std::size_t planBytes = 0;
+};
+
+SchemeFigures measure(const Network &network, Scheme scheme, int resolution, int points, int threads) {
+  SchemeFigures f;
+  f.name = schemeName(scheme);
+  std::optional<Surface> surface;
+  f.build = fastest([&] { surface = Surface::build(network, {scheme}); });
+  // Random points inside each face's domain polygon, faces in turn.
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> coordinate(-1, 1);
+  std::vector<std::pair<int, Vec2>> samples;
+  for (int k = 0; samples.size() < static_cast<size_t>(points); ++k) {
+    const int face = k % surface->faceCount(), n = surface->domainSides(face);
+    const Vec2 uv{coordinate(rng), coordinate(rng)};
+    bool inside = true;
+    for (int i = 0; i < n && inside; ++i) {
+      const Vec2 p = surface->domainCorner(face, i), q = surface->domainCorner(face, i + 1);
+      inside = cross(q - p, uv - p) > 0;
+    }
+    if (inside) samples.push_back({face, uv});
+  }
+  {
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    f.pointwise = fastest([&] {
+      double sum = 0;
+      for (const auto &[face, uv] : samples) sum += surface->evaluate(face, uv).point.x;
+      if (!std::isfinite(sum)) std::fprintf(stderr, "non-finite point\n");
+    });
+    f.cold = fastest([&] {
+      clearEvaluationPlans();
+      f.meshPoints = tessellate(*surface, {resolution, 1}).positions.size();
+    });
+    f.warm = fastest([&] { tessellate(*surface, {resolution, 1}); });
+  }
+  f.warmThreads = fastest([&] { tessellate(*surface, {resolution, threads}); });
+  f.planBytes = evaluationPlanCache().bytes;
+  return f;
+}
+
+} // namespace
+
+Command addBenchCommand(CLI::App &app) {
+  struct Options {
+    std::string input = "builtin:pentagon";
+    int resolution = 256, points = 4000, threads = 0;
+    bool json = false;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App *sub = app.add_subcommand("bench", "G1 vs G2 evaluation cost (paper 000 Table 1 form)");
+  sub->add_option("INPUT", o->input, "network file (.json, .lop) or builtin:NAME (default builtin:pentagon)");
+  sub->add_option("--resolution", o->resolution, "tessellation resolution")->check(CLI::Range(1, 4096));
+  sub->add_option("--points", o->points, "random points for the pointwise evaluation")->check(CLI::Range(1, 10000000));
+  sub->add_option("--threads", o->threads, "threads for the parallel figures (0 = all cores)")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_flag("--json", o->json, "print one JSON object");
+  return {sub, [o] {
+            const Network network = Network::build(loadNetworkInput(o->input), o->input);
+            const int threads = o->threads > 0 ? o->threads : tbb::info::default_concurrency();
+            std::vector<SchemeFigures> figures;
+            for (Scheme s : {Scheme::GregoryG1, Scheme::GregoryG2, Scheme::CompositeRibbon})
+              figures.push_back(measure(network, s, o->resolution, o->points, threads));
+            const SchemeFigures &g1 = figures[0], &g2 = figures[1];
+            auto perSecond = [](std::size_t n, double s) { return s > 0 ? n / s : 0.0; };
+            nlohmann::json out;
+            out["input"] = o->input;
+            out["resolution"] = o->resolution;
+            out["threads"] = threads;
+            out["kernel_width"] = kernels::bestWidth().name + " (" + std::to_string(kernels::bestWidth().lanes) + " doubles)";
+            out["g1_points_per_second_per_core"] = perSecond(g1.meshPoints, g1.warm);
+            out["g2_points_per_second_per_core"] = perSecond(g2.meshPoints, g2.warm);
+            out["g2_over_g1_eval_cost"] = g2.warm / g1.warm;
+            out["g2_over_g1_pointwise_cost"] = g2.pointwise / g1.pointwise;
+            out["g2_over_g1_build_cost"] = g2.build / g1.build;
+            out["warm_over_cold_speedup"] = g2.cold / g2.warm;
+            out["thread_speedup"] = g2.warm / g2.warmThreads;
+            for (const SchemeFigures &f : figures)
+              out["schemes"][f.name] = {{"build_seconds", f.build},
+                                        {"pointwise_points", o->points},
+                                        {"pointwise_seconds", f.pointwise},
+                                        {"pointwise_points_per_second", perSecond(o->points, f.pointwise)},
+                                        {"mesh_points", f.meshPoints},
+                                        {"cold_seconds", f.cold},
+                                        {"warm_seconds", f.warm},
+                                        {"warm_threads_seconds", f.warmThreads},
+                                        {"warm_points_per_second_per_core", perSecond(f.meshPoints, f.warm)},
+                                        {"plan_cache_bytes", f.planBytes}};
+            if (o->json) {
+              std::printf("%s\n", out.dump(2).c_str());
+              return 0;
+            }
+            std::printf("%s, resolution %d, %d threads, kernels %s\n\n", o->input.c_str(), o->resolution, threads,
+                        out["kernel_width"].get<std::string>().c_str());
+            std::printf("%-17s %10s %12s %12s %10s %10s %10s %10s %14s\n", "scheme", "build ms",
+                        ("eval " + std::to_string(o->points) + " ms").c_str(), "pointwise/s", "mesh pts", "cold ms",
+                        "warm ms", "warm Nt ms", "warm pts/s/core");
+            for (const SchemeFigures &f : figures)
+              std::printf("%-17s %10.2f %12.2f %12.3g %10zu %10.2f %10.2f %10.2f %14.3g\n", f.name.c_str(), f.build * 1e3,
+                          f.pointwise * 1e3, perSecond(o->points, f.pointwise), f.meshPoints, f.cold * 1e3, f.warm * 1e3,
+                          f.warmThreads * 1e3, perSecond(f.meshPoints, f.warm));
+            std::printf("\nG2/G1 cost: build %.2f, pointwise %.2f, warm tessellation %.2f\n", g2.build / g1.build,
+                        g2.pointwise / g1.pointwise, g2.warm / g1.warm);
+            std::printf("G2 warm over cold: %.2fx; %d threads over 1: %.2fx\n", g2.cold / g2.warm, threads,
+                        g2.warm / g2.warmThreads);
+            return 0;
+          }};
+}
+
+} // namespace curvenet::cli
