@@ -24,6 +24,7 @@ Command addCheckCommand(CLI::App &app);
 Command addTessellateCommand(CLI::App &app);
 Command addDemoCommand(CLI::App &app);
 Command addRenderCommand(CLI::App &app);
+Command addApproximateCommand(CLI::App &app);
 
 /// The scheme for a --scheme value; InputError listing the known ones otherwise.
 Scheme parseScheme(const std::string &name);

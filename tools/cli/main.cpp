@@ -22,8 +22,7 @@ int main(int argc, char **argv) {
   track(addRenderCommand(app));
   track(addPendingCommand(app, "bench", "G1 vs G2 evaluation cost (paper 000 Table 1 form)",
                           "the G2 scheme and the evaluation plans"));
-  track(addPendingCommand(app, "approximate", "G1/G2 surfaces fitted to a triangle mesh (paper 000 Fig. 10)",
-                          "mesh approximation"));
+  track(addApproximateCommand(app));
   track(addListCommand(app));
 
   try {

@@ -452,7 +452,8 @@ std::string networkToJson(const NetworkDescription &d) {
   }
   s += d.faces.empty() ? "]" : "\n  ]";
 
-  if (d.reference) {
+  // A mesh reference is a separate input (curvenet approximate), never part of the file.
+  if (d.reference && d.reference->kind != ReferenceSurface::Kind::Mesh) {
     const ReferenceSurface &ref = *d.reference;
     s += ",\n  \"reference\": {\"kind\": " + jsonString(ReferenceSurface::kindName(ref.kind)) +
          ", \"center\": " + vecText(ref.center, "reference.center") + ", \"size\": " + vecText(ref.size, "reference.size") + "}";
