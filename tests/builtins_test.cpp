@@ -324,6 +324,7 @@ std::vector<SurfaceSample> samples(const ReferenceSurface &s) {
         n = normalized({-2 * s.size.x * x, -2 * s.size.y * y, 1});
         break;
       }
+      case ReferenceSurface::Kind::Mesh: break; // no built-in carries one
       }
       out.push_back({p + s.center, n});
     }

@@ -25,6 +25,7 @@ Command addTessellateCommand(CLI::App &app);
 Command addDemoCommand(CLI::App &app);
 Command addRenderCommand(CLI::App &app);
 Command addBenchCommand(CLI::App &app);
+Command addApproximateCommand(CLI::App &app);
 
 /// The scheme for a --scheme value; InputError listing the known ones otherwise.
 Scheme parseScheme(const std::string &name);
@@ -49,8 +50,5 @@ std::size_t estimateMeshBytes(std::size_t vertices, bool writesText);
 /// the memory available now; called before any work starts.
 void refuseIfTooLarge(std::size_t bytes, const std::string &what);
 
-/// Commands whose engine part is not built yet: they say so and exit 2.
-Command addPendingCommand(CLI::App &app, const std::string &name, const std::string &summary,
-                          const std::string &missing);
 
 } // namespace curvenet::cli

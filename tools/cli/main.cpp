@@ -1,6 +1,5 @@
 // curvenet — command-line front end of the engine. Exit codes: 0 success,
-// 1 bad input or failed operation (message on stderr), 2 usage errors and
-// commands whose engine part does not exist yet.
+// 1 bad input or failed operation (message on stderr), 2 usage errors.
 #include <cstdio>
 #include <exception>
 #include <map>
@@ -21,8 +20,7 @@ int main(int argc, char **argv) {
   track(addCheckCommand(app));
   track(addRenderCommand(app));
   track(addBenchCommand(app));
-  track(addPendingCommand(app, "approximate", "G1/G2 surfaces fitted to a triangle mesh (paper 000 Fig. 10)",
-                          "mesh approximation"));
+  track(addApproximateCommand(app));
   track(addListCommand(app));
 
   try {

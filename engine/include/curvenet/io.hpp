@@ -7,6 +7,8 @@
 //    number of curves; per curve: degree; knot count and knots; control-point
 //    count and x y z triples).
 //  * meshes: Wavefront OBJ and binary little-endian PLY, both with normals.
+//  * mesh input (curvenet approximate): OBJ (`v` and `f` records; polygons
+//    are fan-triangulated; other records ignored) and OFF (ASCII).
 //
 // Errors: every reader throws InputError naming the file, the element or line,
 // and what is wrong. Writers never leave a partial file behind: they write to
@@ -42,6 +44,18 @@ NetworkDescription loadNetworkInput(const std::string &input);
 /// after `writer` returned and the stream flushed without error. On any
 /// exception the temporary is removed and the exception propagates.
 void writeFileAtomically(const std::string &path, const std::function<void(std::ostream &)> &writer);
+
+/// The whole file as bytes; InputError naming the file and the system's reason.
+std::string readTextFile(const std::string &path);
+
+/// Triangle meshes for input: positions and triangles only (normals, texture
+/// coordinates and groups are dropped; polygons are fan-triangulated).
+/// InputError names the file and line: a malformed number, an index out of
+/// range, a face with fewer than 3 corners, no triangles at all.
+Mesh parseObjMesh(const std::string &text, const std::string &file = {});
+Mesh parseOffMesh(const std::string &text, const std::string &file = {});
+/// Reads .obj or .off by extension.
+Mesh readMeshFile(const std::string &path);
 
 void writeObj(const Mesh &mesh, std::ostream &out);
 void writePly(const Mesh &mesh, std::ostream &out);

@@ -41,10 +41,21 @@ struct FaceDescription {
   std::string name;                   ///< optional, for reports
 };
 
+/// Per-curve settings (the native format's `edges`).
+struct EdgeDescription {
+  int curve = -1;
+  /// Master face (paper 000 Sec. 5.1): every piece of the curve borders this
+  /// face, and gregory-g2 gives the other face of each piece the master's
+  /// cross curvature (measured on the master's G¹ patch), whatever the
+  /// surface's EdgeCurvature source is elsewhere. -1: no master.
+  int masterFace = -1;
+};
+
 struct NetworkDescription {
   std::string name;
   std::vector<BSplineCurve> curves;
   std::vector<FaceDescription> faces;
+  std::vector<EdgeDescription> edges; ///< optional; at most one per curve
   /// Relative tolerance: points closer than tolerance × bounding-box diagonal
   /// are the same vertex, and loops must close within it.
   double tolerance = 1e-7;
@@ -78,6 +89,7 @@ struct Segment {
   int sourceCurve = -1;            ///< index into the description's curves
   double sourceFrom = 0, sourceTo = 0; ///< range of the source curve (sourceFrom < sourceTo)
   std::array<int, 2> faces{-1, -1};    ///< faces[1] == -1 on the boundary
+  int masterFace = -1;                 ///< from EdgeDescription: one of `faces`, or -1
   bool isBoundary() const { return faces[1] < 0; }
 };
 
@@ -104,7 +116,9 @@ public:
   /// Builds the topology; throws InputError naming `file` (may be empty) and
   /// the element at fault: unknown curve index, range outside the curve,
   /// loop that does not close, fewer than 2 or more than 8 sides, a segment
-  /// used by more than two faces or twice in the same direction.
+  /// used by more than two faces or twice in the same direction; an edge
+  /// setting naming an unknown curve, a curve twice, or a master face that
+  /// does not border every piece of its curve with a neighbour on the other side.
   static Network build(const NetworkDescription &description, const std::string &file = {});
 
   const std::string &name() const { return name_; }

@@ -7,6 +7,7 @@
 // to share across threads.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -28,21 +29,34 @@ struct SurfaceFrame {
   double normalCurvature(const Vec3 &t) const;
 };
 
+class MeshReference; // curvenet/mesh_reference.hpp
+
 struct ReferenceSurface {
   enum class Kind {
     Ellipsoid, ///< (x/a)² + (y/b)² + (z/c)² = 1 around `center`, a,b,c = size
     Torus,     ///< ring radius R = size.x, tube radius r = size.y, axis z, around `center`
     Graph,     ///< z = a x² + b y² over the xy-plane, a = size.x, b = size.y, shifted by `center`
+    /// A triangle mesh (paper 000 Sec. 5.3): closest points on its triangles,
+    /// normals and curvatures by a local quadric fit (curvenet/mesh_reference.hpp).
+    /// `mesh` must be set; center and size are unused. Never read from or
+    /// written to a network file (the mesh is a separate input).
+    Mesh,
   };
   Kind kind = Kind::Ellipsoid;
   Vec3 center;
   Vec3 size{1, 1, 1};
+  std::shared_ptr<const MeshReference> mesh; ///< Kind::Mesh only
 
-  /// Short name used in files: "ellipsoid", "torus", "graph".
+  /// A mesh-backed reference.
+  static ReferenceSurface fromMesh(std::shared_ptr<const MeshReference> mesh);
+
+  /// Short name: "ellipsoid", "torus", "graph", "mesh". kindFromName knows
+  /// only the analytic kinds (the ones a network file may name).
   static std::string kindName(Kind kind);
   static std::optional<Kind> kindFromName(const std::string &name);
 
-  /// Implicit function value: zero on the surface, with gradient ≠ 0 there.
+  /// Implicit function value: zero on the surface, with gradient ≠ 0 there
+  /// (Kind::Mesh: the signed distance).
   double implicit(const Vec3 &p) const;
   /// Closest surface point to p with its frame (Newton projection, robust for
   /// points within a fraction of the smallest curvature radius).

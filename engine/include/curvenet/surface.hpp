@@ -50,8 +50,8 @@
 //
 // Threads: a built Surface is immutable; evaluate() may be called from any
 // number of threads at once. Cost: build is linear in the number of segments
-// (fence construction dominates; gregory-g2 with MasterSlave or Averaging also
-// builds and samples the G¹ surface); evaluate is O(n) ribbon evaluations
+// (fence construction dominates; gregory-g2 with MasterSlave, Averaging or a
+// named master face also builds and samples the G¹ surface); evaluate is O(n) ribbon evaluations
 // (Gregory) or O(3n) (composite ribbon) and allocates nothing.
 #pragma once
 
@@ -102,7 +102,9 @@ enum class FenceNormals {
 /// normal curvature in the common direction N × P', paper 000 Sec. 3.3).
 /// Every source keeps κ in the curve's own direction equal to the curve's
 /// normal curvature (constraint κ(ω0) = k0) and uses the vertex tensors at the
-/// segment ends.
+/// segment ends. A segment whose curve names a master face
+/// (EdgeDescription::masterFace, paper 000 Sec. 5.1) always takes the master's
+/// G¹ patch curvature as MasterSlave does, whichever source is chosen here.
 enum class EdgeCurvature {
   /// The G¹ patch of the edge's first face (Segment::faces[0]) is the master:
   /// its curvature tensor along the edge, measured in five directions and

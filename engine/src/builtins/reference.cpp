@@ -13,6 +13,8 @@
 
 #include "curvenet/reference.hpp"
 
+#include "curvenet/mesh_reference.hpp"
+
 namespace curvenet {
 inline namespace v1 {
 
@@ -20,7 +22,7 @@ namespace {
 
 using Mat3 = std::array<std::array<double, 3>, 3>;
 
-Vec3 apply(const Mat3 &H, const Vec3 &v) {
+Vec3 applyMatrix(const Mat3 &H, const Vec3 &v) {
   return {H[0][0] * v.x + H[0][1] * v.y + H[0][2] * v.z, H[1][0] * v.x + H[1][1] * v.y + H[1][2] * v.z,
           H[2][0] * v.x + H[2][1] * v.y + H[2][2] * v.z};
 }
@@ -37,7 +39,7 @@ SurfaceFrame frameFromImplicit(const Vec3 &q, const Vec3 &g, const Mat3 &H) {
   Vec3 u = normalized(axis - dot(axis, n) * n);
   Vec3 v = cross(n, u);
   // Shape matrix in (u, v): symmetric 2×2 [a b; b c], eigen-decomposed in closed form.
-  double a = -dot(u, apply(H, u)) / gn, b = -dot(u, apply(H, v)) / gn, c = -dot(v, apply(H, v)) / gn;
+  double a = -dot(u, applyMatrix(H, u)) / gn, b = -dot(u, applyMatrix(H, v)) / gn, c = -dot(v, applyMatrix(H, v)) / gn;
   double mean = 0.5 * (a + c), half = std::hypot(0.5 * (a - c), b);
   f.k1 = mean + half;
   f.k2 = mean - half;
@@ -180,8 +182,16 @@ std::string ReferenceSurface::kindName(Kind kind) {
   case Kind::Ellipsoid: return "ellipsoid";
   case Kind::Torus: return "torus";
   case Kind::Graph: return "graph";
+  case Kind::Mesh: return "mesh";
   }
   return "unknown";
+}
+
+ReferenceSurface ReferenceSurface::fromMesh(std::shared_ptr<const MeshReference> mesh) {
+  ReferenceSurface r;
+  r.kind = Kind::Mesh;
+  r.mesh = std::move(mesh);
+  return r;
 }
 
 std::optional<ReferenceSurface::Kind> ReferenceSurface::kindFromName(const std::string &name) {
@@ -202,6 +212,7 @@ double ReferenceSurface::implicit(const Vec3 &p) const {
     return s * s + l.z * l.z - size.y * size.y;
   }
   case Kind::Graph: return l.z - size.x * l.x * l.x - size.y * l.y * l.y;
+  case Kind::Mesh: return mesh->signedDistance(p);
   }
   return 0;
 }
@@ -212,11 +223,13 @@ SurfaceFrame ReferenceSurface::closest(const Vec3 &p) const {
   case Kind::Ellipsoid: return ellipsoidFrame(center, size, center + ellipsoidClosest(size, l));
   case Kind::Torus: return torusFrame(center, size.x, center + torusClosest(size.x, size.y, l));
   case Kind::Graph: return graphFrame(center, size.x, size.y, center + graphClosest(size.x, size.y, l));
+  case Kind::Mesh: return mesh->closest(p);
   }
   return {};
 }
 
 double ReferenceSurface::signedDistance(const Vec3 &p) const {
+  if (kind == Kind::Mesh) return mesh->signedDistance(p);
   SurfaceFrame f = closest(p);
   Vec3 d = p - f.point;
   return std::copysign(norm(d), dot(d, f.normal));

@@ -70,6 +70,8 @@ void checkMesh(const Mesh &mesh) {
 
 } // namespace
 
+std::string readTextFile(const std::string &path) { return readWholeFile(path); }
+
 NetworkDescription readNetworkFile(const std::string &path) {
   const std::string ext = lowercaseExtension(path);
   if (ext != ".json" && ext != ".lop")

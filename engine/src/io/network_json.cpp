@@ -337,17 +337,24 @@ ReferenceSurface readReference(const DocumentReader &r, const Json &j, const std
   return reference;
 }
 
-// "edges" is reserved for per-edge settings of a later version. Accepting only
-// {"curve": i} now means a file written for the later version fails loudly
-// here instead of being read with its settings ignored.
-void readEdges(const DocumentReader &r, const Json &j, std::size_t curveCount) {
+// "edges": per-curve settings. Unknown keys fail loudly, so a file written
+// for a later version is never read with its settings ignored.
+std::vector<EdgeDescription> readEdges(const DocumentReader &r, const Json &j, std::size_t curveCount,
+                                       std::size_t faceCount) {
   r.expectArray(j, "edges");
+  std::vector<EdgeDescription> edges;
   for (std::size_t i = 0; i < j.size(); ++i) {
     const std::string path = indexed("edges", i);
     r.expectObject(j[i], path);
-    r.checkKeys(j[i], path, {"curve"}, "per-edge settings are reserved; version 1 accepts only \"curve\"");
-    r.index(r.required(j[i], "curve", path), member(path, "curve"), curveCount);
+    r.checkKeys(j[i], path, {"curve", "master"}, "per-edge settings other than \"curve\" and \"master\" are reserved");
+    EdgeDescription edge;
+    edge.curve = r.index(r.required(j[i], "curve", path), member(path, "curve"), curveCount);
+    if (const Json *master = r.optional(j[i], "master"))
+      edge.masterFace = static_cast<int>(r.integer(*master, member(path, "master"), 0,
+                                                   static_cast<std::int64_t>(faceCount) - 1));
+    edges.push_back(edge);
   }
+  return edges;
 }
 
 // Writer helpers: each scalar goes through nlohmann's dump, which prints the
@@ -403,7 +410,7 @@ NetworkDescription parseNetworkJson(const std::string &text, const std::string &
   for (std::size_t f = 0; f < faces.size(); ++f) d.faces.push_back(readFace(r, faces[f], indexed("faces", f), d.curves));
 
   if (const Json *reference = r.optional(doc, "reference")) d.reference = readReference(r, *reference, "reference");
-  if (const Json *edges = r.optional(doc, "edges")) readEdges(r, *edges, d.curves.size());
+  if (const Json *edges = r.optional(doc, "edges")) d.edges = readEdges(r, *edges, d.curves.size(), d.faces.size());
   return d;
 }
 
@@ -452,7 +459,18 @@ std::string networkToJson(const NetworkDescription &d) {
   }
   s += d.faces.empty() ? "]" : "\n  ]";
 
-  if (d.reference) {
+  if (!d.edges.empty()) {
+    s += ",\n  \"edges\": [";
+    for (std::size_t k = 0; k < d.edges.size(); ++k) {
+      s += k ? ",\n    " : "\n    ";
+      s += "{\"curve\": " + std::to_string(d.edges[k].curve);
+      if (d.edges[k].masterFace >= 0) s += ", \"master\": " + std::to_string(d.edges[k].masterFace);
+      s += "}";
+    }
+    s += "\n  ]";
+  }
+  // A mesh reference is a separate input (curvenet approximate), never part of the file.
+  if (d.reference && d.reference->kind != ReferenceSurface::Kind::Mesh) {
     const ReferenceSurface &ref = *d.reference;
     s += ",\n  \"reference\": {\"kind\": " + jsonString(ReferenceSurface::kindName(ref.kind)) +
          ", \"center\": " + vecText(ref.center, "reference.center") + ", \"size\": " + vecText(ref.size, "reference.size") + "}";

@@ -216,6 +216,27 @@ Network Network::build(const NetworkDescription &description, const std::string 
     net.vertices_[seg.end].segments.push_back(static_cast<int>(s));
   }
 
+  // Explicit masters (paper 000 Sec. 5.1).
+  std::vector<bool> seen(curves.size(), false);
+  for (size_t k = 0; k < description.edges.size(); ++k) {
+    const EdgeDescription &edge = description.edges[k];
+    const std::string element = "edges[" + std::to_string(k) + "]";
+    if (edge.curve < 0 || edge.curve >= static_cast<int>(curves.size()))
+      throw fail(element, "curve " + std::to_string(edge.curve) + " does not exist");
+    if (seen[edge.curve]) throw fail(element, "curve " + std::to_string(edge.curve) + " has settings twice");
+    seen[edge.curve] = true;
+    if (edge.masterFace < 0) continue;
+    if (edge.masterFace >= static_cast<int>(description.faces.size()))
+      throw fail(element, "master face " + std::to_string(edge.masterFace) + " does not exist");
+    for (Segment &seg : net.segments_) {
+      if (seg.sourceCurve != edge.curve) continue;
+      if (seg.faces[1] < 0 || (seg.faces[0] != edge.masterFace && seg.faces[1] != edge.masterFace))
+        throw fail(element, "master face " + std::to_string(edge.masterFace) + " and another face must border every "
+                            "piece of curve " + std::to_string(edge.curve));
+      seg.masterFace = edge.masterFace;
+    }
+  }
+
   // Loops must close: the end vertex of each side is the start of the next.
   for (size_t f = 0; f < net.faces_.size(); ++f) {
     Face &face = net.faces_[f];

@@ -218,7 +218,12 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
   // Transversal curvature κ_D per segment (gregory-g2).
   if (g2) {
     std::optional<Surface> g1;
-    if (options.edgeCurvature == EdgeCurvature::MasterSlave || options.edgeCurvature == EdgeCurvature::Averaging)
+    // Edges with an explicit master (paper 000 Sec. 5.1) take its curvature
+    // whatever the source elsewhere, so they need the G¹ patches too.
+    const bool explicitMasters = std::any_of(network.segments().begin(), network.segments().end(),
+                                             [](const Segment &seg) { return seg.masterFace >= 0; });
+    if (options.edgeCurvature == EdgeCurvature::MasterSlave || options.edgeCurvature == EdgeCurvature::Averaging ||
+        explicitMasters)
       g1 = Surface::build(network, {Scheme::GregoryG1, Sweepline::Hermite, options.fenceNormals});
     for (size_t e = 0; e < network.segments().size(); ++e) {
       const Segment &seg = network.segments()[e];
@@ -238,12 +243,18 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
         const Vec3 n = fence.normal(u), t = normalized(c[1]), d = cross(n, t);
         const double k0 = dot(c[2], n) / dot(c[1], c[1]);
         double kappa = 0;
-        if (options.edgeCurvature == EdgeCurvature::Reference) {
+        // The master face's side of the edge: named (paper 000 Sec. 5.1), or
+        // faces[0] for MasterSlave; -1 averages both (Averaging).
+        const bool namedMaster = seg.masterFace >= 0;
+        const int masterSide = namedMaster ? (seg.faces[0] == seg.masterFace ? 0 : 1)
+                               : options.edgeCurvature == EdgeCurvature::MasterSlave ? 0
+                                                                                    : -1;
+        if (!namedMaster && options.edgeCurvature == EdgeCurvature::Reference) {
           const SurfaceFrame frame = reference->closest(c[0]);
           kappa = (dot(frame.normal, n) < 0 ? -1.0 : 1.0) * frame.normalCurvature(d);
         } else if (j == 0 || j == kCurvatureIntervals) {
           kappa = impl->curvatures[j == 0 ? seg.start : seg.end].normalCurvature(d);
-        } else if (options.edgeCurvature == EdgeCurvature::Direct) {
+        } else if (!namedMaster && options.edgeCurvature == EdgeCurvature::Direct) {
           const double x = seg.curve.arcLength(0.0, u) / length;
           const WeingartenForm w{(1 - x) * endForms[0].w1 + x * endForms[1].w1,
                                  (1 - x) * endForms[0].w2 + x * endForms[1].w2,
@@ -257,7 +268,7 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
           int count = 0;
           for (int side = 0; side < 2; ++side) {
             const int face = seg.faces[side];
-            if (face < 0 || (side == 1 && options.edgeCurvature == EdgeCurvature::MasterSlave)) continue;
+            if (face < 0 || (masterSide >= 0 && side != masterSide)) continue;
             const SurfacePoint2 p = g1->evaluateSecondOrder(face, g1->domainPointOnSegment(face, int(e), u));
             const double sign = dot(p.normal, n) < 0 ? -1.0 : 1.0;
             const Vec3 normal = p.normal * sign, b = normalized(cross(normal, t));

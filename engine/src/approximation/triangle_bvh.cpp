@@ -1,0 +1,132 @@
+#include "approximation/triangle_bvh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace curvenet {
+inline namespace v1 {
+
+namespace {
+constexpr int kLeafSize = 4;
+
+Vec3 minimum(const Vec3 &a, const Vec3 &b) { return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)}; }
+Vec3 maximum(const Vec3 &a, const Vec3 &b) { return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)}; }
+
+double boxSquaredDistance(const Vec3 &p, const Vec3 &lo, const Vec3 &hi) {
+  double s = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double d = std::max({lo[i] - p[i], 0.0, p[i] - hi[i]});
+    s += d * d;
+  }
+  return s;
+}
+} // namespace
+
+Vec3 closestOnTriangle(const Vec3 &p, const Vec3 &a, const Vec3 &b, const Vec3 &c, Vec3 &bary) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return bary = {1, 0, 0}, a;
+  const Vec3 bp = p - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return bary = {0, 1, 0}, b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double v = d1 / (d1 - d3);
+    bary = {1 - v, v, 0};
+    return a + ab * v;
+  }
+  const Vec3 cp = p - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return bary = {0, 0, 1}, c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double w = d2 / (d2 - d6);
+    bary = {1 - w, 0, w};
+    return a + ac * w;
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    bary = {0, 1 - w, w};
+    return b + (c - b) * w;
+  }
+  const double denom = 1 / (va + vb + vc);
+  const double v = vb * denom, w = vc * denom;
+  bary = {1 - v - w, v, w};
+  return a + ab * v + ac * w;
+}
+
+TriangleBvh::TriangleBvh(std::span<const Vec3> positions, std::span<const std::array<std::uint32_t, 3>> triangles)
+    : positions_(positions.begin(), positions.end()), triangles_(triangles.begin(), triangles.end()) {
+  if (triangles_.empty()) return;
+  std::vector<Vec3> centroids(triangles_.size());
+  order_.resize(triangles_.size());
+  for (size_t t = 0; t < triangles_.size(); ++t) {
+    const auto &tri = triangles_[t];
+    centroids[t] = (positions_[tri[0]] + positions_[tri[1]] + positions_[tri[2]]) / 3.0;
+    order_[t] = static_cast<int>(t);
+  }
+  nodes_.reserve(2 * triangles_.size() / kLeafSize + 2);
+  nodes_.emplace_back();
+  build(0, 0, static_cast<int>(order_.size()), centroids);
+}
+
+void TriangleBvh::build(int index, int begin, int end, std::vector<Vec3> &centroids) {
+  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi = -lo, clo = lo, chi = hi;
+  for (int k = begin; k < end; ++k) {
+    const auto &tri = triangles_[order_[k]];
+    for (int i = 0; i < 3; ++i) lo = minimum(lo, positions_[tri[i]]), hi = maximum(hi, positions_[tri[i]]);
+    clo = minimum(clo, centroids[order_[k]]), chi = maximum(chi, centroids[order_[k]]);
+  }
+  nodes_[index].lo = lo, nodes_[index].hi = hi;
+  if (end - begin <= kLeafSize) {
+    nodes_[index].first = begin, nodes_[index].count = end - begin;
+    return;
+  }
+  const Vec3 extent = chi - clo;
+  const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+  const int mid = (begin + end) / 2;
+  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+                   [&](int a, int b) { return centroids[a][axis] < centroids[b][axis]; });
+  // Children are appended as a pair, so an inner node stores only the first.
+  const int child = static_cast<int>(nodes_.size());
+  nodes_[index].first = child, nodes_[index].count = 0;
+  nodes_.emplace_back();
+  nodes_.emplace_back();
+  build(child, begin, mid, centroids);
+  build(child + 1, mid, end, centroids);
+}
+
+TriangleBvh::Hit TriangleBvh::closest(const Vec3 &p) const {
+  Hit best;
+  best.squaredDistance = std::numeric_limits<double>::infinity();
+  if (nodes_.empty()) return best;
+  int stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node &node = nodes_[stack[--top]];
+    if (boxSquaredDistance(p, node.lo, node.hi) >= best.squaredDistance) continue;
+    if (node.count > 0) {
+      for (int k = node.first; k < node.first + node.count; ++k) {
+        const auto &tri = triangles_[order_[k]];
+        Vec3 bary;
+        const Vec3 q = closestOnTriangle(p, positions_[tri[0]], positions_[tri[1]], positions_[tri[2]], bary);
+        const double d = squaredNorm(q - p);
+        if (d < best.squaredDistance) best = {q, order_[k], bary, d};
+      }
+      continue;
+    }
+    // Nearer child last, so it is popped first.
+    const int a = node.first, b = node.first + 1;
+    const double da = boxSquaredDistance(p, nodes_[a].lo, nodes_[a].hi);
+    const double db = boxSquaredDistance(p, nodes_[b].lo, nodes_[b].hi);
+    if (da < db) stack[top++] = b, stack[top++] = a;
+    else stack[top++] = a, stack[top++] = b;
+  }
+  return best;
+}
+
+} // namespace v1
+} // namespace curvenet
