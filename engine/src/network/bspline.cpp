@@ -85,6 +85,9 @@ void basisDerivatives(int span, double t, int p, int n, std::span<const double> 
 // Span index for knot vector U of a clamped curve with `count` control points:
 // U[span] <= t < U[span+1], the last non-empty span for t at the domain end.
 int spanOf(std::span<const double> U, int p, int count, double t) {
+  // NaN compares false with everything and would walk past the last span:
+  // keep it in range (the caller's result is NaN anyway).
+  if (std::isnan(t)) t = U[p];
   if (t >= U[count]) {
     int s = count - 1;
     while (s > p && U[s] >= U[s + 1]) --s;

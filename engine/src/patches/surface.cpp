@@ -97,13 +97,17 @@ double constrainedTransversal(const std::array<double, 5> &measured, double k0) 
 /// neighbouring samples whose normals point into opposite half-spaces. A
 /// smooth patch cannot turn its normal by 90° between samples this close
 /// unless it folds, so no well-formed patch is reported.
+struct NonFinitePatch {};
+
 bool patchFolds(const Patch &patch) {
   constexpr int rows = 8;
   const RegularDomain &domain = patch.domain();
   const int n = domain.sides();
   auto normalAt = [&](const Vec2 &uv) {
     const DualVec3 r = patch.evaluate(uv.x, uv.y);
-    return cross(r.du, r.dv);
+    const Vec3 n = cross(r.du, r.dv);
+    if (!std::isfinite(r.v.x + r.v.y + r.v.z + n.x + n.y + n.z)) throw NonFinitePatch{};
+    return n;
   };
   for (int i = 0; i < n; ++i) {
     std::vector<std::vector<Vec3>> grid(rows);
@@ -346,7 +350,15 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
       }
     impl->patches.emplace_back(std::move(ribbons), options, std::move(parabolic));
     impl->domainSides.push_back(std::move(sides));
-    if (patchFolds(impl->patches.back())) impl->folded.push_back(static_cast<int>(f));
+    try {
+      if (patchFolds(impl->patches.back())) impl->folded.push_back(static_cast<int>(f));
+    } catch (const NonFinitePatch &) {
+      // Degenerate input (e.g. coincident corners after the tolerance, a
+      // collapsed side) that the topology checks let through: refuse it here
+      // rather than hand out NaN points.
+      throw InputError("", "face " + std::to_string(f),
+                       "the patch cannot be evaluated (non-finite points inside the face): the loop is degenerate");
+    }
   }
   Surface surface;
   surface.impl_ = std::move(impl);
