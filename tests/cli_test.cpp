@@ -10,7 +10,12 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <csignal>
+#include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
+
+extern char **environ;
 
 namespace fs = std::filesystem;
 
@@ -110,4 +115,35 @@ TEST_F(Cli, BadInputFailsClearlyAndWritesNothing) {
     EXPECT_FALSE(fs::exists(out)) << e.arguments;
     EXPECT_FALSE(fs::exists(dir / "out.xyz")) << e.arguments;
   }
+}
+
+// Outputs are named only when complete (writeFileAtomically): a tessellation
+// killed at any moment — while computing or while writing — leaves the
+// output folder exactly as it was, with no partial mesh and no temporary.
+TEST_F(Cli, KilledTessellateLeavesNoFile) {
+  const fs::path out = dir / "big.obj";
+  for (int delayMs : {150, 1500, 4000, 6500}) { // the later ones land in the writing phase on this machine
+    const std::string resolution = "160";
+    const std::string outPath = out.string();
+    const char *argv[] = {CURVENET_CLI, "tessellate", "builtin:ellipsoid-truncated-icosahedron", "--resolution",
+                          resolution.c_str(), "-o", outPath.c_str(), nullptr};
+    pid_t pid = 0;
+    ASSERT_EQ(::posix_spawn(&pid, CURVENET_CLI, nullptr, nullptr, const_cast<char **>(argv), environ), 0);
+    ::usleep(static_cast<useconds_t>(delayMs) * 1000);
+    ::kill(pid, SIGKILL);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    if (WIFEXITED(status)) continue; // finished before the kill: nothing to learn from this delay
+    EXPECT_TRUE(fs::is_empty(dir)) << "after SIGKILL at " << delayMs << " ms the folder holds "
+                                   << fs::directory_iterator(dir)->path().filename();
+  }
+}
+
+TEST_F(Cli, WorkBeyondTheMachinesMemoryIsRefusedUpFront) {
+  const fs::path out = dir / "huge.obj";
+  const CliRun run = runCli("tessellate builtin:torus-mixed --resolution 4000 -o '" + out.string() + "'");
+  EXPECT_NE(run.exitCode, 0);
+  EXPECT_NE(run.err.find("GiB"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("--resolution 4000"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(out));
 }

@@ -13,6 +13,10 @@ packages=(
   libbenchmark-dev libgtest-dev libgmock-dev libhwy-dev nlohmann-json3-dev libcli11-dev
 )
 
+# Extra packages for the sanitizer and fuzzing scripts (e.g. clang).
+read -r -a extra <<< "${CURVENET_EXTRA_PACKAGES:-}"
+packages+=("${extra[@]}")
+
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -27,6 +31,9 @@ if ((${#missing[@]})); then
   "${sudo[@]}" apt-get update -qq
   "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
+
+# --install-only: the packages, no build (used by the sanitizer and fuzz scripts).
+if [ "${1:-}" = "--install-only" ]; then exit 0; fi
 
 if [ ! -f "$build_dir/CMakeCache.txt" ]; then
   cmake -S "$repo" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release

@@ -177,6 +177,14 @@ public:
   static Surface build(const Network &network, const SurfaceOptions &options = {});
 
   const Network &network() const;
+  /// The origin of the patches' internal frame in world coordinates: zero,
+  /// except for a network whose bounding-box centre lies more than 4
+  /// diagonals from the origin (e.g. a part placed at 1e6 in a large
+  /// assembly). Such a network is built translated to that centre, so the
+  /// patches' arithmetic keeps the model's own precision (normals and
+  /// continuity figures as good as at the origin); every point returned is
+  /// translated back. Only the rounding of the final addition remains.
+  Vec3 origin() const;
   /// Faces whose patch folds over itself: the surface normal turns over
   /// inside the face (a loop too far from convex for its regular n-gon
   /// domain, or ribbons extrapolated far beyond what the boundary supports).

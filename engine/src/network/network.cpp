@@ -212,6 +212,26 @@ Network Network::build(const NetworkDescription &description, const std::string 
       throw fail("curve " + std::to_string(seg.sourceCurve),
                  "the piece on [" + std::to_string(seg.sourceFrom) + ", " + std::to_string(seg.sourceTo) +
                      "] has (near) zero length");
+    // A curve that stops and turns back (a cusp, or a piece running back
+    // over itself) has no tangent there to hang a normal fence on.
+    {
+      constexpr int kSamples = 128;
+      const double length = seg.curve.arcLength();
+      Vec3 previous = seg.curve.derivatives(0.0)[1];
+      for (int k = 1; k <= kSamples; ++k) {
+        const double u = double(k) / kSamples;
+        const Vec3 tangent = seg.curve.derivatives(u)[1];
+        if (norm(tangent) <= 1e-12 * length || dot(tangent, previous) < -0.8 * norm(tangent) * norm(previous)) {
+          std::ostringstream where;
+          where.precision(3);
+          where << "folds back on itself near parameter "
+                << seg.sourceFrom + (seg.sourceTo - seg.sourceFrom) * (u - 0.5 / kSamples)
+                << " (a cusp or a self-overlap: the tangent reverses), so no surface can follow it";
+          throw fail("curve " + std::to_string(seg.sourceCurve), where.str());
+        }
+        previous = tangent;
+      }
+    }
     net.vertices_[seg.start].segments.push_back(static_cast<int>(s));
     net.vertices_[seg.end].segments.push_back(static_cast<int>(s));
   }

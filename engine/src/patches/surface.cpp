@@ -127,6 +127,9 @@ bool patchFolds(const Patch &patch) {
 }
 
 struct Surface::Impl {
+  /// Where the patches' own coordinates have their origin in the world
+  /// (zero unless the network lies far from the origin, see Surface::origin).
+  Vec3 origin;
   std::vector<int> folded; ///< faces whose patch folds over itself (see patchFolds)
   Network network;
   SurfaceOptions options;
@@ -159,6 +162,28 @@ const RegularDomain &squareDomain() {
 } // namespace
 
 Surface Surface::build(const Network &network, const SurfaceOptions &options) {
+  // A model far from the origin (a 1e6 offset on a unit-size part) would
+  // lose its low digits in every difference the patches take: build it
+  // translated to its bounding-box centre, and translate points back on the
+  // way out. A mesh reference cannot be moved cheaply, so it keeps the world frame.
+  const BoundingBox &box = network.bounds();
+  const Vec3 centre = box.center();
+  const bool meshReference = network.reference() && network.reference()->kind == ReferenceSurface::Kind::Mesh;
+  if (norm(centre) > 4 * network.diagonal() && !meshReference) {
+    NetworkDescription local = network.description();
+    for (BSplineCurve &curve : local.curves) {
+      std::vector<Vec3> points = curve.controlPoints();
+      for (Vec3 &p : points) p -= centre;
+      curve = BSplineCurve(curve.degree(), curve.knots(), std::move(points), curve.weights());
+    }
+    if (local.reference) local.reference->center -= centre;
+    Surface surface = build(Network::build(local), options);
+    // The surface was made here and is not shared yet: completing it is safe.
+    const auto impl = std::const_pointer_cast<Impl>(surface.impl_);
+    impl->network = network;
+    impl->origin = centre;
+    return surface;
+  }
   const bool g2 = options.scheme == Scheme::GregoryG2;
   const auto &reference = network.reference();
   if (g2 && options.sweepline == Sweepline::Radial)
@@ -366,6 +391,7 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
 }
 
 const Network &Surface::network() const { return impl_->network; }
+Vec3 Surface::origin() const { return impl_->origin; }
 const std::vector<int> &Surface::foldedFaces() const { return impl_->folded; }
 const SurfaceOptions &Surface::options() const { return impl_->options; }
 int Surface::faceCount() const {
@@ -422,7 +448,7 @@ SurfacePoint Surface::evaluate(int face, const Vec2 &uv) const {
                                                      0.5 + (v - 0.5) * (1 - 1e-7));
       normal = cross(inside.du, inside.dv);
     }
-    return {p.point, p.du / width, p.dv / width, normalized(normal)};
+    return {p.point + impl_->origin, p.du / width, p.dv / width, normalized(normal)};
   }
   const Patch &patch = impl_->patches.at(face);
   const DualVec3 r = patch.evaluate(uv.x, uv.y);
@@ -433,7 +459,7 @@ SurfacePoint Surface::evaluate(int face, const Vec2 &uv) const {
     const DualVec3 inside = patch.evaluate(uv.x * (1 - 1e-7), uv.y * (1 - 1e-7));
     normal = cross(inside.du, inside.dv);
   }
-  return {r.v, r.du, r.dv, normalized(normal)};
+  return {r.v + impl_->origin, r.du, r.dv, normalized(normal)};
 }
 
 SurfacePoint2 Surface::evaluateSecondOrder(int face, const Vec2 &uv, double step) const {

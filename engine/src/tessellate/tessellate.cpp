@@ -177,6 +177,7 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
   // key built once, itself in parallel), then tiles of samples in parallel.
   std::vector<std::shared_ptr<const EvaluationPlan>> plans(faces);
   const bool planned = options.usePlans && faces > 0 && SurfaceAccess::patch(surface, 0) != nullptr;
+  const Vec3 origin = surface.origin(); // patches evaluate in the surface's own frame
   if (planned) {
     struct Tile {
       int face;
@@ -204,7 +205,7 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
         // Degenerate only where Surface::evaluate takes the limit from inside.
         if (squaredNorm(normal) <= 1e-24 * squaredNorm(p.du) * squaredNorm(p.dv))
           normal = surface.evaluate(tile.face, uv).normal;
-        mesh.positions[id] = p.v;
+        mesh.positions[id] = p.v + origin;
         mesh.normals[id] = normalized(normal);
         if (record) mesh.domainPoints[id] = {tile.face, uv};
       }

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Bounded fuzzing of every reader and of the network builder (libFuzzer,
+# clang, ASan + UBSan), seeded from the built-ins and ../shared/data.
+#   bash tools/scripts/fuzz.sh [SECONDS_PER_HARNESS]   # default 60
+# Long runs: pass e.g. 3600; the corpora grow in build-fuzz/corpus/ and are
+# reused by the next run. A finding stops the script with a non-zero exit and
+# leaves crash-*/timeout-* files in build-fuzz/findings/; add each to
+# tests/fuzz/regressions/<harness>/ once fixed (see tests/fuzz/README.md).
+set -euo pipefail
+repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+seconds=${1:-60}
+dir=$repo/build-fuzz
+
+CURVENET_EXTRA_PACKAGES="clang-14 libclang-rt-14-dev" bash "$repo/tools/scripts/setup.sh" --install-only
+[ -f "$dir/CMakeCache.txt" ] || CC=clang-14 CXX=clang++-14 cmake -S "$repo" -B "$dir" -G Ninja \
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCURVENET_BUILD_FUZZERS=ON -DCURVENET_BUILD_TOOLS=OFF \
+  -DCURVENET_BUILD_TESTS=OFF -DCURVENET_BUILD_BENCH=OFF
+cmake --build "$dir" -j "$(nproc)"
+
+corpus=$dir/corpus findings=$dir/findings
+mkdir -p "$corpus/fuzz_network_json" "$corpus/fuzz_lop" "$corpus/fuzz_network_builder" "$findings"
+"$dir/tests/fuzz/fuzz_seed_corpus" "$corpus/fuzz_network_json"
+shared=$repo/../shared/data/transfinite-models
+if [ -d "$shared" ]; then cp -f "$shared"/*.lop "$corpus/fuzz_lop/"; fi
+
+export ASAN_OPTIONS=detect_leaks=0
+for harness in fuzz_network_json fuzz_lop fuzz_network_builder; do
+  regressions=$repo/tests/fuzz/regressions/$harness
+  # Past findings first: they must all pass now.
+  if [ -d "$regressions" ] && [ -n "$(ls -A "$regressions")" ]; then
+    "$dir/tests/fuzz/$harness" -runs=0 "$regressions"/* >/dev/null 2>&1 ||
+      { echo "fuzz: $harness fails on a recorded regression input" >&2; exit 1; }
+  fi
+  echo "fuzz: $harness for ${seconds}s"
+  "$dir/tests/fuzz/$harness" "$corpus/$harness" -max_total_time="$seconds" -timeout=20 -rss_limit_mb=4096 \
+    -max_len=65536 -artifact_prefix="$findings/$harness-" -print_final_stats=1 2>"$findings/$harness.log" ||
+    { echo "fuzz: $harness found a fault; see $findings/$harness.log" >&2; tail -30 "$findings/$harness.log" >&2; exit 1; }
+  grep -E "^(Done|stat::number_of_executed_units)" "$findings/$harness.log" || true
+done
