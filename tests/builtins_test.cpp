@@ -332,10 +332,10 @@ std::vector<SurfaceSample> samples(const ReferenceSurface &s) {
 }
 
 std::vector<ReferenceSurface> someSurfaces() {
-  return {ReferenceSurface{ReferenceSurface::Kind::Ellipsoid, {0.5, -1, 2}, {1.2, 1.0, 0.8}},
-          ReferenceSurface{ReferenceSurface::Kind::Torus, {0, 0, 1}, {1.0, 0.45, 0}},
-          ReferenceSurface{ReferenceSurface::Kind::Graph, {1, 2, 3}, {1, -1, 0}},
-          ReferenceSurface{ReferenceSurface::Kind::Graph, {}, {0.7, 0.3, 0}}};
+  return {ReferenceSurface{ReferenceSurface::Kind::Ellipsoid, {0.5, -1, 2}, {1.2, 1.0, 0.8}, nullptr},
+          ReferenceSurface{ReferenceSurface::Kind::Torus, {0, 0, 1}, {1.0, 0.45, 0}, nullptr},
+          ReferenceSurface{ReferenceSurface::Kind::Graph, {1, 2, 3}, {1, -1, 0}, nullptr},
+          ReferenceSurface{ReferenceSurface::Kind::Graph, {}, {0.7, 0.3, 0}, nullptr}};
 }
 
 } // namespace
@@ -365,7 +365,7 @@ TEST(Reference, ClosestPointOfAnOffsetPointReturnsToTheSurface) {
 
 TEST(Reference, PrincipalCurvaturesAgainstClosedForms) {
   auto frame = [](ReferenceSurface::Kind kind, Vec3 size, Vec3 p) {
-    return ReferenceSurface{kind, {}, size}.closest(p);
+    return ReferenceSurface{kind, {}, size, nullptr}.closest(p);
   };
   // Sphere of radius 2 with outward normal: κ1 = κ2 = −1/2.
   SurfaceFrame sphere = frame(ReferenceSurface::Kind::Ellipsoid, {2, 2, 2}, {1, 1, 1.4142135623730951});
@@ -399,7 +399,7 @@ TEST(Reference, PrincipalCurvaturesAgainstClosedForms) {
 
 TEST(Reference, GaussCurvatureAtGenericPoints) {
   // Ellipsoid: K = 1 / (a²b²c² (x²/a⁴ + y²/b⁴ + z²/c⁴)²); torus: K = cos φ / (r (R + r cos φ)).
-  ReferenceSurface ell{ReferenceSurface::Kind::Ellipsoid, {}, {1.2, 1.0, 0.8}};
+  ReferenceSurface ell{ReferenceSurface::Kind::Ellipsoid, {}, {1.2, 1.0, 0.8}, nullptr};
   for (const SurfaceSample &q : samples(ell)) {
     SurfaceFrame f = ell.closest(q.point);
     const Vec3 &p = q.point;
@@ -414,7 +414,7 @@ TEST(Reference, GaussCurvatureAtGenericPoints) {
     EXPECT_NEAR(f.normalCurvature(cross(f.normal, f.direction1)), f.k2, 1e-12);
   }
   const double R = 1.0, r = 0.45;
-  ReferenceSurface torus{ReferenceSurface::Kind::Torus, {}, {R, r, 0}};
+  ReferenceSurface torus{ReferenceSurface::Kind::Torus, {}, {R, r, 0}, nullptr};
   for (const SurfaceSample &q : samples(torus)) {
     SurfaceFrame f = torus.closest(q.point);
     double cosPhi = dot(f.normal, normalized({q.point.x, q.point.y, 0}));

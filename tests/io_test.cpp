@@ -101,7 +101,7 @@ NetworkDescription handBuiltDescription() {
   FaceDescription partial;
   partial.sides = {{1, 2.25, third}, {0, 0.75, 0.0}};
   d.faces.push_back(partial);
-  d.reference = ReferenceSurface{ReferenceSurface::Kind::Torus, {0.1, -2.0 / 3.0, 1e-12}, {3.0, 0.7, 0.0}};
+  d.reference = ReferenceSurface{ReferenceSurface::Kind::Torus, {0.1, -2.0 / 3.0, 1e-12}, {3.0, 0.7, 0.0}, nullptr};
   return d;
 }
 

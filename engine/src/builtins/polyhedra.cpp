@@ -132,7 +132,7 @@ BuiltinData ellipsoidNetworkFromSphere(const std::string &name, const SpherePoly
   BuiltinData data;
   NetworkDescription &net = data.network;
   net.name = name;
-  net.reference = ReferenceSurface{ReferenceSurface::Kind::Ellipsoid, Vec3{}, radii};
+  net.reference = ReferenceSurface{ReferenceSurface::Kind::Ellipsoid, Vec3{}, radii, nullptr};
   const std::vector<Vec3> &unit = polyhedron.vertices;
   std::vector<Vec3> position(unit.size());
   for (size_t i = 0; i < unit.size(); ++i) position[i] = scaled(radii, unit[i]);

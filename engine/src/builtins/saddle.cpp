@@ -35,7 +35,7 @@ BuiltinData saddleNodes() {
   BuiltinData data;
   NetworkDescription &net = data.network;
   net.name = "saddle-nodes";
-  net.reference = ReferenceSurface{ReferenceSurface::Kind::Graph, Vec3{}, Vec3{1, -1, 0}};
+  net.reference = ReferenceSurface{ReferenceSurface::Kind::Graph, Vec3{}, Vec3{1, -1, 0}, nullptr};
 
   // Curve parameter = x for curves along x, = y for curves along y, so face
   // sides are written with coordinates.

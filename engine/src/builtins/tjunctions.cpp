@@ -59,7 +59,7 @@ struct Builder {
       c = BSplineCurve::bezier(p);
     }
     net.name = name;
-    net.reference = ReferenceSurface{ReferenceSurface::Kind::Ellipsoid, Vec3{}, radii};
+    net.reference = ReferenceSurface{ReferenceSurface::Kind::Ellipsoid, Vec3{}, radii, nullptr};
     return {net, {}};
   }
 };

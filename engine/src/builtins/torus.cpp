@@ -122,7 +122,7 @@ BuiltinData torusMixed() {
   BuiltinData data;
   NetworkDescription &net = data.network;
   net.name = "torus-mixed";
-  net.reference = ReferenceSurface{ReferenceSurface::Kind::Torus, Vec3{}, Vec3{kR, kr, 0}};
+  net.reference = ReferenceSurface{ReferenceSurface::Kind::Torus, Vec3{}, Vec3{kR, kr, 0}, nullptr};
   const int count = kRing * kTube;
   std::vector<Vec3> position(count);
   for (int j = 0; j < kTube; ++j)
