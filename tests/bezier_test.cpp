@@ -126,7 +126,7 @@ NetworkDescription quadsOnSphere(const std::vector<Vec3> &nodes, std::vector<std
     }
     net.faces.push_back(face);
   }
-  net.reference = ReferenceSurface{ReferenceSurface::Kind::Ellipsoid, {}, {1, 1, 1}};
+  net.reference = ReferenceSurface{ReferenceSurface::Kind::Ellipsoid, {}, {1, 1, 1}, nullptr};
   return net;
 }
 

@@ -147,3 +147,44 @@ TEST_F(Cli, WorkBeyondTheMachinesMemoryIsRefusedUpFront) {
   EXPECT_NE(run.err.find("--resolution 4000"), std::string::npos) << run.err;
   EXPECT_FALSE(fs::exists(out));
 }
+
+namespace {
+std::string fileBytes(const fs::path &path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+} // namespace
+
+// Determinism (issue: reliability, item 5): every command that writes a file
+// writes the same bytes for 1 and 2 threads, and again on a second run.
+TEST_F(Cli, EveryWritingCommandIsDeterministic) {
+  struct Case {
+    std::string name, arguments, file;
+  };
+  const std::vector<Case> cases = {
+      {"tessellate", "tessellate builtin:torus-mixed --scheme gregory-g2 --resolution 5", "mesh.ply"},
+      {"render", "render builtin:pentagon --size 160x120 --resolution 8 --mode mean --boundaries", "picture.exr"},
+      {"approximate", "approximate builtin:pentagon builtin:pentagon --resolution 4", "fit.obj"},
+  };
+  for (const Case &c : cases) {
+    std::vector<std::string> outputs;
+    for (const std::string threads : {"1", "2", "2"}) {
+      const fs::path out = dir / (threads + "-" + std::to_string(outputs.size()) + "-" + c.file);
+      const CliRun run = runCli(c.arguments + " --threads " + threads + " -o '" + out.string() + "'");
+      ASSERT_EQ(run.exitCode, 0) << c.name << ": " << run.err;
+      outputs.push_back(fileBytes(out));
+      ASSERT_FALSE(outputs.back().empty()) << c.name;
+    }
+    EXPECT_TRUE(outputs[0] == outputs[1]) << c.name << ": 1 vs 2 threads";
+    EXPECT_TRUE(outputs[1] == outputs[2]) << c.name << ": two runs";
+  }
+  // check --tweak writes a repaired network: the same bytes on every run.
+  std::vector<std::string> tweaks;
+  for (int run = 0; run < 2; ++run) {
+    const fs::path out = dir / ("tweak-" + std::to_string(run) + ".json");
+    const CliRun r = runCli("check builtin:torus-mixed --samples 2 --resolution 2 --tweak -o '" + out.string() + "'");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    tweaks.push_back(fileBytes(out));
+  }
+  EXPECT_TRUE(tweaks[0] == tweaks[1]);
+}

@@ -1,7 +1,10 @@
 // Embree primary-ray renderer and OpenImageIO writer (see render.hpp).
 #include "render.hpp"
 
+#include "curvenet/io.hpp"
+
 #include <embree3/rtcore.h>
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <tbb/blocked_range2d.h>
 #include <tbb/global_control.h>
@@ -390,27 +393,27 @@ void writeImage(const Image &img, const std::string &path) {
   spec.attribute("ImageDescription", description(img));
   spec.attribute("Software", "curvenet");
 
-  // Same pattern as writeFileAtomically (curvenet/io.hpp), with OIIO
-  // writing the temporary by format name (its own extension would not tell).
-  static std::atomic<std::uint64_t> counter{0};
-  const std::string temp = path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-  auto fail = [&](const std::string &why) {
-    std::error_code ignored;
-    std::filesystem::remove(temp, ignored);
-    throw InputError(path, {}, why);
-  };
+  // The image is encoded into memory (an OIIO IOProxy) and handed to
+  // writeFileAtomically: it reaches the disk in one unnamed file that gets
+  // its name only when complete, exactly like the meshes.
+  std::vector<unsigned char> encoded;
   {
     auto out = OIIO::ImageOutput::create(exr ? "openexr" : "png");
-    if (!out) fail("no " + std::string(exr ? "OpenEXR" : "PNG") + " writer in OpenImageIO: " + OIIO::geterror());
-    if (!out->open(temp, spec)) fail("cannot create " + temp + ": " + out->geterror());
+    if (!out) throw InputError(path, {}, "no " + std::string(exr ? "OpenEXR" : "PNG") + " writer in OpenImageIO: " + OIIO::geterror());
+    OIIO::Filesystem::IOVecOutput memory(encoded);
+    if (!out->supports("ioproxy") || !out->set_ioproxy(&memory))
+      throw InputError(path, {}, "the OpenImageIO writer cannot encode into memory");
+    // No capture date: the same picture must give the same bytes on every run.
+    spec.erase_attribute("DateTime");
+    if (!out->open(path, spec)) throw InputError(path, {}, "cannot encode the image: " + out->geterror());
     const bool ok = exr ? out->write_image(OIIO::TypeDesc::FLOAT, floats.data())
                         : out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
-    if (!ok) fail("write failed: " + out->geterror());
-    if (!out->close()) fail("closing the file failed: " + out->geterror());
+    if (!ok) throw InputError(path, {}, "encoding failed: " + out->geterror());
+    if (!out->close()) throw InputError(path, {}, "encoding failed: " + out->geterror());
   }
-  std::error_code ec;
-  std::filesystem::rename(temp, path, ec);
-  if (ec) fail("cannot move the finished file into place: " + ec.message());
+  writeFileAtomically(path, [&](std::ostream &file) {
+    file.write(reinterpret_cast<const char *>(encoded.data()), static_cast<std::streamsize>(encoded.size()));
+  });
 }
 
 } // namespace curvenet::render
