@@ -403,8 +403,9 @@ void writeImage(const Image &img, const std::string &path) {
     OIIO::Filesystem::IOVecOutput memory(encoded);
     if (!out->supports("ioproxy") || !out->set_ioproxy(&memory))
       throw InputError(path, {}, "the OpenImageIO writer cannot encode into memory");
-    // No capture date: the same picture must give the same bytes on every run.
-    spec.erase_attribute("DateTime");
+    // The OpenEXR writer stamps the current time as capDate unless the spec
+    // names one: an empty date keeps the bytes the same on every run.
+    spec.attribute("DateTime", "");
     if (!out->open(path, spec)) throw InputError(path, {}, "cannot encode the image: " + out->geterror());
     const bool ok = exr ? out->write_image(OIIO::TypeDesc::FLOAT, floats.data())
                         : out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
