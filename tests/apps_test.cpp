@@ -215,7 +215,13 @@ TEST(MeshApproximation, G2BeatsG1OnTriangulatedBuiltins) {
     const Surface g2Exact = Surface::build(net, g2Options);
     const DeviationFigures exactFigures =
         measurePointDeviation(g2Exact, triangulated(name).mesh.positions, r.diagonal, 16);
-    EXPECT_NEAR(g2.maxAbs, exactFigures.maxAbs, 0.15 * exactFigures.maxAbs);
+    std::printf("%s: G2 from the mesh %.4f%%, from the analytic reference %.4f%%\n", name.c_str(), 100 * g2.maxAbs,
+                100 * exactFigures.maxAbs);
+    // The mesh estimate of normals and curvatures adds 0.10% (ellipsoid) and
+    // 0.16% (torus) of the diagonal to the analytic 0.54% / 0.77%: since the
+    // G² ribbons' quintic α, β blend the estimation is about a fifth of the
+    // error (it was under 15% when the patches deviated 1.1–1.8%).
+    EXPECT_NEAR(g2.maxAbs, exactFigures.maxAbs, 0.25 * exactFigures.maxAbs);
   }
 }
 
@@ -286,9 +292,7 @@ TEST(MasterSlave, NamedMasterFacesGiveTheirCurvature) {
   ASSERT_EQ(back.edges.size(), d.edges.size());
   EXPECT_EQ(back.edges[1].masterFace, d.edges[1].masterFace);
   const Network net = Network::build(back);
-  SurfaceOptions g1Options;
-  g1Options.sweepline = Sweepline::Hermite;
-  const Surface g1 = Surface::build(net, g1Options);
+  const Surface g1 = Surface::build(net, {}); // the G¹ surface masters are measured on: default (radial) sweep
   SurfaceOptions g2Options;
   g2Options.scheme = Scheme::GregoryG2;
   g2Options.edgeCurvature = EdgeCurvature::Direct;

@@ -209,9 +209,10 @@ INSTANTIATE_TEST_SUITE_P(All, G2Builtin, ::testing::ValuesIn(builtinNames()),
 
 // Done-when of the issue: G¹ patches jump in curvature at least 10x more
 // than G² ones. With reference curvature G² deviates less from the reference
-// than G¹ on every built-in; the issue's target of half the G¹ deviation is
-// not reached yet (measured about 2/3, see the printed figures), so the bound
-// asserted on the two named built-ins is 3/4.
+// than G¹ on every built-in, and at most half as much on the two named ones
+// (paper 000 Fig. 10: 2–4x). Measured: ellipsoid 0.55% vs 1.60%, torus 0.82%
+// vs 2.54% of the diagonal. With linear α, β in the parabolic ribbons the
+// twist mismatch at the corners left G² at 1.07% / 1.74% (ratio ≈ 0.67).
 // The G¹ figure comes from differenced derivatives: halving the step must
 // change it by less than 10%.
 TEST(G2VersusG1, CurvatureJumpAndReferenceDeviation) {
@@ -232,7 +233,7 @@ TEST(G2VersusG1, CurvatureJumpAndReferenceDeviation) {
     if (builtinVertexFacts(name).empty()) continue;
     if (name == "ellipsoid-truncated-icosahedron" || name == "torus-mixed") {
       EXPECT_GE(jump1, 10 * std::max(jump2, 1e-6));
-      EXPECT_LE(dev2, 0.75 * dev1);
+      EXPECT_LE(dev2, 0.5 * dev1);
       CurvatureJumpOptions halved;
       halved.step = 0.5 * CurvatureJumpOptions{}.step;
       EXPECT_NEAR(measureCurvatureJump(g1, halved).maxJump, jump1, 0.1 * jump1);

@@ -253,7 +253,7 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
                                              [](const Segment &seg) { return seg.masterFace >= 0; });
     if (options.edgeCurvature == EdgeCurvature::MasterSlave || options.edgeCurvature == EdgeCurvature::Averaging ||
         explicitMasters)
-      g1 = Surface::build(network, {Scheme::GregoryG1, Sweepline::Hermite, options.fenceNormals});
+      g1 = Surface::build(network, {Scheme::GregoryG1, Sweepline::Radial, options.fenceNormals});
     for (size_t e = 0; e < network.segments().size(); ++e) {
       const Segment &seg = network.segments()[e];
       const NormalFence &fence = *impl->fences[e];
@@ -363,7 +363,10 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
                              ": the two curves leave the corner in the same direction");
       const Vec3 startTarget = startTurn < kStraightAngle ? ribbon.fenceDirection(0.0) : -prevTangent;
       const Vec3 endTarget = endTurn < kStraightAngle ? ribbon.fenceDirection(1.0) : nextTangent;
-      ribbon.setEndConditions(startTarget, endTarget);
+      // gregory-g2: α, β by the quintic blend, so that the nine-term
+      // correction patch meets compatible twists (see ScalarBlend).
+      ribbon.setEndConditions(startTarget, endTarget,
+                              g2 ? LinearRibbon::ScalarBlend::Quintic : LinearRibbon::ScalarBlend::Linear);
     }
     std::vector<ParabolicRibbon> parabolic;
     if (g2)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <array>
 
 #include "curvenet/error.hpp"
 
@@ -209,7 +210,8 @@ Vec3 LinearRibbon::fenceDirection(double s) const {
   return cross(n, curve_.derivatives(s)[1]);
 }
 
-void LinearRibbon::setEndConditions(const Vec3 &startTarget, const Vec3 &endTarget) {
+void LinearRibbon::setEndConditions(const Vec3 &startTarget, const Vec3 &endTarget, ScalarBlend blend) {
+  blend_ = blend;
   // T = αD + βP' with D ⊥ P': the components of the target along D and P'
   // (a target slightly out of the tangent plane is projected onto it).
   auto solve = [&](double s, const Vec3 &target, double &alpha, double &beta) {
@@ -221,14 +223,21 @@ void LinearRibbon::setEndConditions(const Vec3 &startTarget, const Vec3 &endTarg
   solve(1.0, endTarget, alpha1_, beta1_);
 }
 
+std::array<double, 3> LinearRibbon::profile(double s) const {
+  if (blend_ == ScalarBlend::Quintic)
+    return {s * s * s * (10 - 15 * s + 6 * s * s), 30 * s * s * (1 - s) * (1 - s), 60 * s * (1 - s) * (1 - 2 * s)};
+  return {s, 1, 0};
+}
+
 RibbonJet LinearRibbon::at(double s) const {
   const auto c = curve_.derivatives(s);
   Vec3 n, dn;
   fence(s, n, dn);
   const Vec3 D = cross(n, c[1]);
   const Vec3 dD = cross(dn, c[1]) + cross(n, c[2]);
-  const double alpha = alpha0_ + (alpha1_ - alpha0_) * s, beta = beta0_ + (beta1_ - beta0_) * s;
-  const double dAlpha = alpha1_ - alpha0_, dBeta = beta1_ - beta0_;
+  const auto h = profile(s);
+  const double alpha = alpha0_ + (alpha1_ - alpha0_) * h[0], beta = beta0_ + (beta1_ - beta0_) * h[0];
+  const double dAlpha = (alpha1_ - alpha0_) * h[1], dBeta = (beta1_ - beta0_) * h[1];
   return {c[0], c[1], D * alpha + c[1] * beta, D * dAlpha + dD * alpha + c[1] * dBeta + c[2] * beta};
 }
 
@@ -244,11 +253,14 @@ LinearRibbon::SecondJet LinearRibbon::secondJet(double s) const {
   j.D = cross(j.N, j.dP);
   j.dD = cross(j.dN, j.dP) + cross(j.N, j.ddP);
   const Vec3 ddD = cross(j.ddN, j.dP) + 2.0 * cross(j.dN, j.ddP) + cross(j.N, j.dddP);
-  j.alpha = alpha0_ + (alpha1_ - alpha0_) * s, j.beta = beta0_ + (beta1_ - beta0_) * s;
-  j.dAlpha = alpha1_ - alpha0_, j.dBeta = beta1_ - beta0_;
+  const auto h = profile(s);
+  j.alpha = alpha0_ + (alpha1_ - alpha0_) * h[0], j.beta = beta0_ + (beta1_ - beta0_) * h[0];
+  j.dAlpha = (alpha1_ - alpha0_) * h[1], j.dBeta = (beta1_ - beta0_) * h[1];
+  const double ddAlpha = (alpha1_ - alpha0_) * h[2], ddBeta = (beta1_ - beta0_) * h[2];
   j.T = j.D * j.alpha + j.dP * j.beta;
   j.dT = j.D * j.dAlpha + j.dD * j.alpha + j.dP * j.dBeta + j.ddP * j.beta;
-  j.ddT = j.dD * (2 * j.dAlpha) + ddD * j.alpha + j.ddP * (2 * j.dBeta) + j.dddP * j.beta;
+  j.ddT = j.D * ddAlpha + j.dD * (2 * j.dAlpha) + ddD * j.alpha + j.dP * ddBeta + j.ddP * (2 * j.dBeta) +
+          j.dddP * j.beta;
   return j;
 }
 

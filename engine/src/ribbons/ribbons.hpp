@@ -7,6 +7,7 @@
 // also carries one transversal curvature κ_D(u), shared the same way.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -95,7 +96,7 @@ struct SideEndData {
 };
 
 /// Linear ribbon R(s, d) = P(s) + d T(s) of one face side, with
-/// T = α D + β P', D = N × P' (eqs. 9, 11, 12) and α, β linear in s, fixed
+/// T = α D + β P', D = N × P' (eqs. 9, 11, 12) and α, β blended in s, fixed
 /// by the end conditions T(0) = −P_prev'(1), T(1) = P_next'(0). At a corner
 /// where the loop runs straight on (a T-node seen from the straight side,
 /// or the midpoints of a 2-sided face) the neighbour's tangent gives no
@@ -110,8 +111,19 @@ public:
   };
   LinearRibbon(BSplineCurve curve, std::vector<Piece> pieces);
 
+  /// How α, β run between their end values: linearly, or by the quintic
+  /// smoothstep 10s³ − 15s⁴ + 6s⁵, whose first and second derivatives vanish
+  /// at both ends. Paper 000 leaves α, β free (Sec. 3.2). The G² correction
+  /// patch (eq. 22) needs T' and T'' of the two ribbons at a corner to agree
+  /// (W₁₁, W₁₂, W₂₁); with linear α, β they differ by the planar turn of T
+  /// along each side (in a regular hexagon T'(0) and −T'_prev(1) are √3 edge
+  /// lengths apart), and the rational terms turn that mismatch into a
+  /// normal offset of the corner interpolants. With the quintic blend both
+  /// come from the curve and the fence alone (P'', P''', D', D''), which agree
+  /// up to the surface's own variation.
+  enum class ScalarBlend { Linear, Quintic };
   /// Sets α, β from the cross-derivative targets at both ends.
-  void setEndConditions(const Vec3 &startTarget, const Vec3 &endTarget);
+  void setEndConditions(const Vec3 &startTarget, const Vec3 &endTarget, ScalarBlend blend = ScalarBlend::Linear);
 
   const BSplineCurve &curve() const { return curve_; }
   RibbonJet at(double s) const;
@@ -142,10 +154,13 @@ public:
   int pieceAt(double s, double &local, double &dLocal) const;
 
 private:
+  /// The blend of α, β at s with its first two derivatives.
+  std::array<double, 3> profile(double s) const;
   void fence(double s, Vec3 &n, Vec3 &dn) const;
   BSplineCurve curve_;
   std::vector<Piece> pieces_;
   double alpha0_ = 0, alpha1_ = 0, beta0_ = 0, beta1_ = 0;
+  ScalarBlend blend_ = ScalarBlend::Linear;
 };
 
 /// Parabolic ribbon R(s, d) = P + d T + ½ d² C (paper 000 eqs. 10, 15) over a
