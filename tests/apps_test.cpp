@@ -21,6 +21,7 @@
 
 #include "curvenet/approximation.hpp"
 #include "curvenet/builtins.hpp"
+#include "curvenet/continuity.hpp"
 #include "curvenet/curvature_jump.hpp"
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
@@ -335,4 +336,117 @@ TEST(MasterSlave, NamedMasterFacesGiveTheirCurvature) {
   EXPECT_THROW(Network::build(bad), InputError);
   bad.edges = {{0, -1}, {0, -1}};
   EXPECT_THROW(Network::build(bad), InputError);
+}
+
+// Connection curves (paper 000 Sec. 5.2). concave-L is one 6-sided loop with
+// a concave corner: as given, every transfinite scheme folds over it; split
+// by the inserted connection curve, no scheme folds, gregory-g2 is curvature
+// continuous across the hidden seam (averaged G¹ curvatures) while
+// gregory-g1 is not, and both parts report as the user's one face.
+TEST(ConnectionCurves, ConcaveLoopIsSplitIntoConvexParts) {
+  const NetworkDescription d = builtinNetwork("concave-L");
+  const Network net = Network::build(d);
+  ASSERT_EQ(net.faces().size(), 2u);
+  for (const Face &face : net.faces()) {
+    EXPECT_EQ(face.partOf, 0);
+    EXPECT_EQ(face.sideCount(), 4); // the concave corner joined to the opposite corner: two quads
+  }
+  int seams = 0;
+  for (const Segment &seg : net.segments()) seams += seg.connection ? 1 : 0;
+  EXPECT_EQ(seams, 1);
+  // The split description is explicit and idempotent: written and read back,
+  // it builds the same network without a further split.
+  const NetworkDescription back = parseNetworkJson(networkToJson(net.description()));
+  EXPECT_EQ(back.faces.size(), 2u);
+  EXPECT_EQ(back.faces[1].partOf, 0);
+  EXPECT_EQ(Network::build(back).segments().size(), net.segments().size());
+
+  NetworkDescription plainDescription = d;
+  plainDescription.connectionCurves = false;
+  const Network plain = Network::build(plainDescription);
+  ASSERT_EQ(plain.faces().size(), 1u);
+  for (Scheme scheme : {Scheme::GregoryG1, Scheme::GregoryG2, Scheme::CompositeRibbon}) {
+    SCOPED_TRACE(schemeName(scheme));
+    EXPECT_EQ(Surface::build(plain, {scheme}).foldedFaces().size(), 1u);
+    EXPECT_TRUE(Surface::build(net, {scheme}).foldedFaces().empty());
+  }
+  auto seamJump = [&](const Surface &s) {
+    double worst = 0;
+    for (const CurvatureJumpSample &sample : measureCurvatureJump(s).samples)
+      if (net.segments()[sample.segment].connection) worst = std::max(worst, sample.jump);
+    return worst;
+  };
+  for (EdgeCurvature source : {EdgeCurvature::Direct, EdgeCurvature::MasterSlave, EdgeCurvature::Reference}) {
+    SurfaceOptions g2;
+    g2.scheme = Scheme::GregoryG2;
+    g2.edgeCurvature = source; // the seam averages whatever the source elsewhere
+    EXPECT_LE(seamJump(Surface::build(net, g2)), 1e-4) << edgeCurvatureName(source);
+  }
+  const double g1Jump = seamJump(Surface::build(net, {Scheme::GregoryG1}));
+  std::printf("concave-L hidden seam: curvature jump G1 %.3g\n", g1Jump);
+  EXPECT_GT(g1Jump, 1e-2);
+}
+
+// A face with a hole: four connection curves join the corners of the square
+// to the four quarter arcs of the circular hole (written clockwise), making
+// four quads; the seams are G² under gregory-g2 and nothing folds. Refusals:
+// a hole whose side count differs, two holes, and holes with connection
+// curves switched off.
+TEST(ConnectionCurves, FaceWithAHoleBecomesFourQuads) {
+  const NetworkDescription d = builtinNetwork("ring");
+  ASSERT_EQ(d.faces.size(), 1u);
+  ASSERT_EQ(d.faces[0].holes.size(), 1u);
+  // The format keeps the hole.
+  const NetworkDescription back = parseNetworkJson(networkToJson(d));
+  ASSERT_EQ(back.faces[0].holes.size(), 1u);
+  EXPECT_EQ(back.faces[0].holes[0].size(), 4u);
+  const Network net = Network::build(back);
+  ASSERT_EQ(net.faces().size(), 4u);
+  int seams = 0;
+  for (const Segment &seg : net.segments())
+    if (seg.connection) {
+      ++seams;
+      EXPECT_GE(seg.faces[1], 0); // interior: between two parts
+    }
+  EXPECT_EQ(seams, 4);
+  for (const Face &face : net.faces()) {
+    EXPECT_EQ(face.partOf, 0);
+    EXPECT_EQ(face.sideCount(), 4);
+  }
+  SurfaceOptions g2;
+  g2.scheme = Scheme::GregoryG2;
+  const Surface surface = Surface::build(net, g2);
+  EXPECT_TRUE(surface.foldedFaces().empty());
+  EXPECT_TRUE(Surface::build(net, {Scheme::GregoryG1}).foldedFaces().empty());
+  const CurvatureJumpReport jump = measureCurvatureJump(surface);
+  EXPECT_LE(jump.maxJump, 1e-4);
+  // Connection curves lie on the reference surface: the composite follows it.
+  const auto deviation = measureReferenceDeviation(surface, 16);
+  ASSERT_TRUE(deviation);
+  std::printf("ring: G2 seam jump %.2e, reference deviation max %.3g%%\n", jump.maxJump, 100 * deviation->maxDeviation);
+  EXPECT_LT(deviation->maxDeviation, 5e-3);
+
+  NetworkDescription bad = d;
+  bad.faces[0].holes[0].pop_back();
+  EXPECT_THROW(Network::build(bad), InputError);
+  bad = d;
+  bad.faces[0].holes.push_back(d.faces[0].holes[0]);
+  EXPECT_THROW(Network::build(bad), InputError);
+  bad = d;
+  bad.connectionCurves = false;
+  EXPECT_THROW(Network::build(bad), InputError);
+}
+
+// No other built-in needs a connection curve: the insertion leaves convex
+// loops alone (the T-nodes and straight runs of saddle-nodes, hull-like
+// included).
+TEST(ConnectionCurves, ConvexNetworksAreLeftAlone) {
+  for (const BuiltinInfo &info : builtinNetworks()) {
+    if (info.name == "concave-L" || info.name == "ring") continue;
+    SCOPED_TRACE(info.name);
+    const NetworkDescription d = builtinNetwork(info.name);
+    const NetworkDescription split = insertConnectionCurves(d);
+    EXPECT_EQ(split.faces.size(), d.faces.size());
+    EXPECT_EQ(split.curves.size(), d.curves.size());
+  }
 }

@@ -87,7 +87,8 @@ TEST(Builtins, NamesOrderAndDefault) {
   }
   EXPECT_EQ(names, (std::vector<std::string>{"pentagon", "sphere-dodecahedron", "ellipsoid-truncated-icosahedron",
                                               "torus-mixed", "saddle-nodes", "hemisphere-tjunction",
-                                              "tjunction-surrounded", "tjunction-vertex", "hull-like"}));
+                                              "tjunction-surrounded", "tjunction-vertex", "hull-like", "concave-L",
+                                              "ring"}));
   EXPECT_EQ(defaultBuiltinName(), "ellipsoid-truncated-icosahedron");
 }
 

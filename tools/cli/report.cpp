@@ -1,5 +1,6 @@
 #include "report.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -35,6 +36,48 @@ nlohmann::json networkReport(const Network &network, const std::string &input) {
   return report;
 }
 
+namespace {
+
+/// Faces split by connection curves (paper 000 Sec. 5.2) are the user's one
+/// face: each composite lists its patches, its hidden seams (the connection
+/// segments) and the curvature jump across them.
+void addCompositeFaces(nlohmann::json &report, const Surface &surface, const CurvatureJumpReport &jump) {
+  const Network &network = surface.network();
+  std::map<int, nlohmann::json> composites;
+  for (size_t f = 0; f < network.faces().size(); ++f) {
+    const int user = network.faces()[f].partOf;
+    nlohmann::json &c = composites[user];
+    c["face"] = user;
+    c["patches"].push_back(f);
+    if (std::find(surface.foldedFaces().begin(), surface.foldedFaces().end(), static_cast<int>(f)) !=
+        surface.foldedFaces().end())
+      c["folded"] = true;
+  }
+  bool anySplit = false;
+  for (size_t e = 0; e < network.segments().size(); ++e) {
+    const Segment &seg = network.segments()[e];
+    if (!seg.connection || seg.faces[0] < 0) continue;
+    anySplit = true;
+    nlohmann::json &c = composites[network.faces()[seg.faces[0]].partOf];
+    c["hidden_seams"].push_back(e);
+    double worst = c.value("max_seam_curvature_jump", 0.0);
+    for (const CurvatureJumpSample &sample : jump.samples)
+      if (sample.segment == static_cast<int>(e)) worst = std::max(worst, sample.jump);
+    c["max_seam_curvature_jump"] = worst;
+  }
+  if (!anySplit) return;
+  nlohmann::json list = nlohmann::json::array();
+  for (auto &[user, c] : composites)
+    if (c["patches"].size() > 1) {
+      c["folded"] = c.value("folded", false);
+      list.push_back(c);
+    }
+  report["faces"] = composites.size();
+  report["composite_faces"] = list;
+}
+
+} // namespace
+
 void addSurfaceReport(nlohmann::json &report, const Surface &surface, int samplesPerSegment, int resolution) {
   report["scheme"] = schemeName(surface.options().scheme);
   report["folded_faces"] = surface.foldedFaces();
@@ -57,6 +100,7 @@ void addSurfaceReport(nlohmann::json &report, const Surface &surface, int sample
                       ? "exact second derivatives (hyper-dual numbers)"
                       : "fourth-order differences of the exact first derivatives, step 1e-5") +
       "; 17 points per shared segment, 1% left out at each end; |k_A - k_B| / max(|k_A|, |k_B|, 1/diagonal)";
+  addCompositeFaces(report, surface, jump);
   if (const auto d = measureReferenceDeviation(surface, resolution)) {
     report["reference"] = {{"max_deviation", d->maxDeviation},
                            {"mean_deviation", d->meanDeviation},
@@ -200,6 +244,13 @@ void printReportTable(const nlohmann::json &report) {
     std::printf("\ncontinuity (%s):\n", report.value("scheme", std::string("?")).c_str());
     for (auto &[key, value] : c.items())
       if (value.is_number()) std::printf("  %-28s %.6g\n", key.c_str(), value.get<double>());
+  }
+  if (report.contains("composite_faces")) {
+    std::printf("\ncomposite faces (split by hidden connection curves; %d user faces):\n", report["faces"].get<int>());
+    for (const auto &c : report["composite_faces"])
+      std::printf("  face %d: %zu patches, %zu hidden seams, max seam curvature jump %.3g%s\n", c["face"].get<int>(),
+                  c["patches"].size(), c["hidden_seams"].size(), c["max_seam_curvature_jump"].get<double>(),
+                  c["folded"].get<bool>() ? ", FOLDED" : "");
   }
   if (report.contains("reference")) {
     std::printf("\nreference deviation (relative to the diagonal):\n");

@@ -39,6 +39,14 @@ struct SideDescription {
 struct FaceDescription {
   std::vector<SideDescription> sides; ///< in loop order; side k ends where side k+1 starts
   std::string name;                   ///< optional, for reports
+  /// Inner loops (holes), each a loop of sides like `sides`, in either
+  /// direction. A face with holes is split by connection curves (see
+  /// insertConnectionCurves); at most one hole per face, with as many sides
+  /// as the outer loop.
+  std::vector<std::vector<SideDescription>> holes;
+  /// Set by insertConnectionCurves on every face of a split description: the
+  /// index of the user's face this loop is a part of. -1: the face itself.
+  int partOf = -1;
 };
 
 /// Per-curve settings (the native format's `edges`).
@@ -49,6 +57,11 @@ struct EdgeDescription {
   /// cross curvature (measured on the master's G¹ patch), whatever the
   /// surface's EdgeCurvature source is elsewhere. -1: no master.
   int masterFace = -1;
+  /// A connection curve (paper 000 Sec. 5.2): an inner seam of a composite
+  /// face, hidden from the user. gregory-g2 averages the two G¹ patches'
+  /// cross curvatures on it (EdgeCurvature::Averaging) whatever the surface's
+  /// source is elsewhere, so the seam is curvature continuous.
+  bool connection = false;
 };
 
 struct NetworkDescription {
@@ -60,7 +73,41 @@ struct NetworkDescription {
   /// are the same vertex, and loops must close within it.
   double tolerance = 1e-7;
   std::optional<ReferenceSurface> reference;
+  /// Network::build inserts connection curves where a face needs them
+  /// (insertConnectionCurves); false builds the loops as given (a face with
+  /// holes is then refused).
+  bool connectionCurves = true;
 };
+
+/// Connection curves (paper 000 Sec. 5.2). A loop with a concave corner
+/// cannot be mapped from a regular n-gon without folding, and a face with a
+/// hole has no single loop; both are split into convex sub-faces by curves
+/// that the user never sees:
+///  * a concave corner (its two curves turn by more than a straight angle
+///    about the face normal, the Newell normal of the loop) is joined to the
+///    loop vertex or side midpoint that splits it best — the one whose four
+///    new corner angles stay farthest from 0 and from a straight angle;
+///    parts that are still concave are split again;
+///  * a hole is joined to the outer loop by one curve per outer corner,
+///    corner i to the hole corner that pairs with it (the rotation of the
+///    hole's corners with the least total distance), which makes n
+///    four-sided faces.
+/// Each connection curve is a cubic whose end tangents lie in the tangent
+/// planes at its ends (the plane of the two loop tangents at a corner; at a
+/// side midpoint, the side tangent and the average of the side's corner
+/// normals), so the ends are ordinary T- or Y-vertices of the split network.
+/// The result lists the sub-faces of each user face consecutively, each with
+/// `partOf` = the user face's index, so a composite face's patches — and
+/// its triangles in a tessellated mesh (Mesh::faceTriangleStart) — form one
+/// contiguous range. Connection curves are appended to `curves` and marked
+/// in `edges` (EdgeDescription::connection); a master face named in `edges`
+/// that is split is replaced by its part bordering the curve.
+/// Returns the description unchanged when no face needs splitting (and
+/// when `connectionCurves` is false). Throws InputError naming `file` and
+/// the face for a hole that cannot be joined (more than one hole, a side
+/// count other than the outer loop's, bad curve references). Cost: a few
+/// curve evaluations per side.
+NetworkDescription insertConnectionCurves(const NetworkDescription &description, const std::string &file = {});
 
 /// Vertex kinds by paper 000 Fig. 1 (n = independent curves).
 enum class VertexKind {
@@ -90,6 +137,7 @@ struct Segment {
   double sourceFrom = 0, sourceTo = 0; ///< range of the source curve (sourceFrom < sourceTo)
   std::array<int, 2> faces{-1, -1};    ///< faces[1] == -1 on the boundary
   int masterFace = -1;                 ///< from EdgeDescription: one of `faces`, or -1
+  bool connection = false;             ///< from EdgeDescription: a hidden seam of a composite face
   bool isBoundary() const { return faces[1] < 0; }
 };
 
@@ -107,13 +155,18 @@ struct FaceSide {
 
 struct Face {
   std::string name;
+  /// The user's face this loop is a part of (FaceDescription::partOf), or
+  /// the face's own index when connection curves did not split it.
+  int partOf = -1;
   std::vector<FaceSide> sides;
   int sideCount() const { return static_cast<int>(sides.size()); }
 };
 
 class Network {
 public:
-  /// Builds the topology; throws InputError naming `file` (may be empty) and
+  /// Inserts connection curves where the description needs them
+  /// (insertConnectionCurves; description() is then the split description),
+  /// then builds the topology; throws InputError naming `file` (may be empty) and
   /// the element at fault: unknown curve index, range outside the curve,
   /// loop that does not close, fewer than 2 or more than 8 sides, a segment
   /// used by more than two faces or twice in the same direction; an edge

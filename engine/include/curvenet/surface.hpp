@@ -104,7 +104,9 @@ enum class FenceNormals {
 /// normal curvature (constraint κ(ω0) = k0) and uses the vertex tensors at the
 /// segment ends. A segment whose curve names a master face
 /// (EdgeDescription::masterFace, paper 000 Sec. 5.1) always takes the master's
-/// G¹ patch curvature as MasterSlave does, whichever source is chosen here.
+/// G¹ patch curvature as MasterSlave does, whichever source is chosen here;
+/// a connection curve (Segment::connection, paper 000 Sec. 5.2) always
+/// averages its two G¹ patches as Averaging does.
 enum class EdgeCurvature {
   /// The G¹ patch of the edge's first face (Segment::faces[0]) is the master:
   /// its curvature tensor along the edge, measured in five directions and

@@ -54,7 +54,14 @@ std::vector<VertexCurvature> fitVertexCurvatures(const Network &network, const s
       omegas.push_back(std::atan2(dot(t, vc.yAxis), dot(t, vc.xAxis)));
       ks.push_back(dot(d[2], vc.normal) / dot(d[1], d[1]));
     }
-    const CurvatureFit fit = fitCurvature(omegas, ks);
+    // Two curves meeting smoothly (one loop of a hole, split into arcs; a
+    // curve continued by another) leave in directions that agree only to the
+    // fit accuracy of the curves. Counted as independent, their tiny angle
+    // would turn the difference of their curvatures into a huge twist; the
+    // builder's continuation angle (1e-4) decides instead.
+    FitOptions fitOptions;
+    fitOptions.parallelTolerance = 1e-4;
+    const CurvatureFit fit = fitCurvature(omegas, ks, fitOptions);
     vc.tensor = fit.tensor;
     vc.branch = fit.branch;
     vc.independentDirections = fit.independentDirections;

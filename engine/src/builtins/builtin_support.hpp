@@ -52,6 +52,10 @@ SpherePolyhedron pentagonCapOnSphere();
 BuiltinData torusMixed();
 BuiltinData saddleNodes();
 
+// Loops that need connection curves (paper 000 Sec. 5.2), see composite.cpp.
+BuiltinData concaveL();
+BuiltinData ring();
+
 // Cubic Bézier networks with T-junctions (paper 003), see tjunctions.cpp.
 BuiltinData hemisphereTJunction();
 BuiltinData tjunctionSurrounded();

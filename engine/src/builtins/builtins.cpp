@@ -44,6 +44,12 @@ const std::vector<Entry> &entries() {
        [] { return tjunctionVertex(); }},
       {{"hull-like", "ship-hull-like side of the ellipsoid (3, 1, 0.8): 10 cubic Bezier patches, 4 T-junctions"},
        [] { return hullLike(); }},
+      {{"concave-L", "one L-shaped 6-sided loop with a concave corner on the bowl z = 0.25x^2 + 0.15y^2; "
+                     "a connection curve splits it (hidden)"},
+       [] { return concaveL(); }},
+      {{"ring", "a square face with a circular hole on the bowl z = 0.25x^2 + 0.15y^2; four connection curves "
+                "make it four quads (hidden)"},
+       [] { return ring(); }},
   };
   return list;
 }

@@ -222,6 +222,11 @@ public:
     return static_cast<int>(j.get<std::int64_t>());
   }
 
+  bool boolean(const Json &j, const std::string &path) const {
+    if (!j.is_boolean()) fail(path, "expected true or false, found " + typeName(j));
+    return j.get<bool>();
+  }
+
   std::string string(const Json &j, const std::string &path) const {
     if (!j.is_string()) fail(path, "expected a string, found " + typeName(j));
     return j.get<std::string>();
@@ -292,15 +297,10 @@ BSplineCurve readCurve(const DocumentReader &r, const Json &j, const std::string
   }
 }
 
-FaceDescription readFace(const DocumentReader &r, const Json &j, const std::string &path,
-                         const std::vector<BSplineCurve> &curves) {
-  r.expectObject(j, path);
-  r.checkKeys(j, path, {"name", "sides"});
-  FaceDescription face;
-  if (const Json *name = r.optional(j, "name")) face.name = r.string(*name, member(path, "name"));
-  const Json &sides = r.required(j, "sides", path);
-  const std::string sidesPath = member(path, "sides");
+std::vector<SideDescription> readSides(const DocumentReader &r, const Json &sides, const std::string &sidesPath,
+                                       const std::vector<BSplineCurve> &curves) {
   r.expectArray(sides, sidesPath);
+  std::vector<SideDescription> loop;
   for (std::size_t k = 0; k < sides.size(); ++k) {
     const std::string sidePath = indexed(sidesPath, k);
     const Json &s = sides[k];
@@ -313,8 +313,26 @@ FaceDescription readFace(const DocumentReader &r, const Json &j, const std::stri
     const Json *to = r.optional(s, "to");
     side.from = from ? r.number(*from, member(sidePath, "from")) : curve.domainStart();
     side.to = to ? r.number(*to, member(sidePath, "to")) : curve.domainEnd();
-    face.sides.push_back(side);
+    loop.push_back(side);
   }
+  return loop;
+}
+
+FaceDescription readFace(const DocumentReader &r, const Json &j, const std::string &path,
+                         const std::vector<BSplineCurve> &curves) {
+  r.expectObject(j, path);
+  r.checkKeys(j, path, {"name", "sides", "holes", "part_of"});
+  FaceDescription face;
+  if (const Json *name = r.optional(j, "name")) face.name = r.string(*name, member(path, "name"));
+  face.sides = readSides(r, r.required(j, "sides", path), member(path, "sides"), curves);
+  if (const Json *holes = r.optional(j, "holes")) {
+    const std::string holesPath = member(path, "holes");
+    r.expectArray(*holes, holesPath);
+    for (std::size_t h = 0; h < holes->size(); ++h)
+      face.holes.push_back(readSides(r, (*holes)[h], indexed(holesPath, h), curves));
+  }
+  if (const Json *partOf = r.optional(j, "part_of"))
+    face.partOf = static_cast<int>(r.integer(*partOf, member(path, "part_of"), 0, std::numeric_limits<int>::max()));
   return face;
 }
 
@@ -346,12 +364,15 @@ std::vector<EdgeDescription> readEdges(const DocumentReader &r, const Json &j, s
   for (std::size_t i = 0; i < j.size(); ++i) {
     const std::string path = indexed("edges", i);
     r.expectObject(j[i], path);
-    r.checkKeys(j[i], path, {"curve", "master"}, "per-edge settings other than \"curve\" and \"master\" are reserved");
+    r.checkKeys(j[i], path, {"curve", "master", "connection"},
+                "per-edge settings other than \"curve\", \"master\" and \"connection\" are reserved");
     EdgeDescription edge;
     edge.curve = r.index(r.required(j[i], "curve", path), member(path, "curve"), curveCount);
     if (const Json *master = r.optional(j[i], "master"))
       edge.masterFace = static_cast<int>(r.integer(*master, member(path, "master"), 0,
                                                    static_cast<std::int64_t>(faceCount) - 1));
+    if (const Json *connection = r.optional(j[i], "connection"))
+      edge.connection = r.boolean(*connection, member(path, "connection"));
     edges.push_back(edge);
   }
   return edges;
@@ -388,7 +409,8 @@ NetworkDescription parseNetworkJson(const std::string &text, const std::string &
   if (version != formatVersion)
     r.fail("version", "unsupported version " + std::to_string(version) + " (this reader knows version " +
                           std::to_string(formatVersion) + ")");
-  r.checkKeys(doc, documentElement, {"format", "version", "name", "tolerance", "curves", "faces", "reference", "edges"});
+  r.checkKeys(doc, documentElement, {"format", "version", "name", "tolerance", "curves", "faces", "reference", "edges",
+                                      "connection_curves"});
 
   NetworkDescription d;
   if (const Json *name = r.optional(doc, "name")) d.name = r.string(*name, "name");
@@ -411,6 +433,8 @@ NetworkDescription parseNetworkJson(const std::string &text, const std::string &
 
   if (const Json *reference = r.optional(doc, "reference")) d.reference = readReference(r, *reference, "reference");
   if (const Json *edges = r.optional(doc, "edges")) d.edges = readEdges(r, *edges, d.curves.size(), d.faces.size());
+  if (const Json *connection = r.optional(doc, "connection_curves"))
+    d.connectionCurves = r.boolean(*connection, "connection_curves");
   return d;
 }
 
@@ -422,6 +446,7 @@ std::string networkToJson(const NetworkDescription &d) {
   s += "  \"version\": " + std::to_string(formatVersion) + ",\n";
   s += "  \"name\": " + jsonString(d.name) + ",\n";
   s += "  \"tolerance\": " + numberText(d.tolerance, "tolerance") + ",\n";
+  if (!d.connectionCurves) s += "  \"connection_curves\": false,\n";
 
   s += "  \"curves\": [";
   for (std::size_t i = 0; i < d.curves.size(); ++i) {
@@ -447,15 +472,28 @@ std::string networkToJson(const NetworkDescription &d) {
     s += f ? ",\n" : "\n";
     s += "    {\n";
     if (!face.name.empty()) s += "      \"name\": " + jsonString(face.name) + ",\n";
-    s += "      \"sides\": [";
-    for (std::size_t k = 0; k < face.sides.size(); ++k) {
-      const SideDescription &side = face.sides[k];
-      const std::string sidePath = indexed(member(path, "sides"), k);
-      s += k ? ",\n        " : "\n        ";
-      s += "{\"curve\": " + std::to_string(side.curve) + ", \"from\": " + numberText(side.from, member(sidePath, "from")) +
-           ", \"to\": " + numberText(side.to, member(sidePath, "to")) + "}";
+    auto loopText = [&](const std::vector<SideDescription> &loop, const std::string &loopPath,
+                        const std::string &indent) {
+      std::string t = "[";
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        const SideDescription &side = loop[k];
+        const std::string sidePath = indexed(loopPath, k);
+        t += k ? ",\n" + indent : "\n" + indent;
+        t += "{\"curve\": " + std::to_string(side.curve) +
+             ", \"from\": " + numberText(side.from, member(sidePath, "from")) +
+             ", \"to\": " + numberText(side.to, member(sidePath, "to")) + "}";
+      }
+      return t + (loop.empty() ? "]" : "\n" + indent.substr(2) + "]");
+    };
+    if (face.partOf >= 0) s += "      \"part_of\": " + std::to_string(face.partOf) + ",\n";
+    s += "      \"sides\": " + loopText(face.sides, member(path, "sides"), "        ");
+    if (!face.holes.empty()) {
+      s += ",\n      \"holes\": [";
+      for (std::size_t h = 0; h < face.holes.size(); ++h)
+        s += (h ? ", " : "") + loopText(face.holes[h], indexed(member(path, "holes"), h), "          ");
+      s += "]";
     }
-    s += face.sides.empty() ? "]\n    }" : "\n      ]\n    }";
+    s += "\n    }";
   }
   s += d.faces.empty() ? "]" : "\n  ]";
 
@@ -465,6 +503,7 @@ std::string networkToJson(const NetworkDescription &d) {
       s += k ? ",\n    " : "\n    ";
       s += "{\"curve\": " + std::to_string(d.edges[k].curve);
       if (d.edges[k].masterFace >= 0) s += ", \"master\": " + std::to_string(d.edges[k].masterFace);
+      if (d.edges[k].connection) s += ", \"connection\": true";
       s += "}";
     }
     s += "\n  ]";

@@ -70,7 +70,9 @@ Vec3 Network::outgoingTangent(int segment, int vertex) const {
   return normalized(d);
 }
 
-Network Network::build(const NetworkDescription &description, const std::string &file) {
+Network Network::build(const NetworkDescription &input, const std::string &file) {
+  const NetworkDescription split = insertConnectionCurves(input, file);
+  const NetworkDescription &description = split;
   auto fail = [&](const std::string &element, const std::string &reason) {
     return InputError(file, element, reason);
   };
@@ -98,6 +100,9 @@ Network Network::build(const NetworkDescription &description, const std::string 
     const int n = static_cast<int>(face.sides.size());
     if (n < 2 || n > 8)
       throw fail("face " + std::to_string(f), std::to_string(n) + " sides; curvenet supports loops of 2 to 8 sides");
+    if (!face.holes.empty())
+      throw fail("face " + std::to_string(f), "has a hole, but connection curves are switched off (a face with a hole "
+                                              "is built only as the composite of the faces they make)");
     for (int k = 0; k < n; ++k) {
       const SideDescription &side = face.sides[k];
       if (side.curve < 0 || side.curve >= static_cast<int>(curves.size()))
@@ -159,6 +164,7 @@ Network Network::build(const NetworkDescription &description, const std::string 
     const FaceDescription &fd = description.faces[f];
     Face face;
     face.name = fd.name.empty() ? "face " + std::to_string(f) : fd.name;
+    face.partOf = fd.partOf >= 0 ? fd.partOf : static_cast<int>(f);
     for (size_t k = 0; k < fd.sides.size(); ++k) {
       const SideDescription &sd = fd.sides[k];
       const BSplineCurve &c = curves[sd.curve];
@@ -245,6 +251,9 @@ Network Network::build(const NetworkDescription &description, const std::string 
       throw fail(element, "curve " + std::to_string(edge.curve) + " does not exist");
     if (seen[edge.curve]) throw fail(element, "curve " + std::to_string(edge.curve) + " has settings twice");
     seen[edge.curve] = true;
+    if (edge.connection)
+      for (Segment &seg : net.segments_)
+        if (seg.sourceCurve == edge.curve) seg.connection = true;
     if (edge.masterFace < 0) continue;
     if (edge.masterFace >= static_cast<int>(description.faces.size()))
       throw fail(element, "master face " + std::to_string(edge.masterFace) + " does not exist");

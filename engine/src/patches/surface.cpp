@@ -249,8 +249,9 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
     std::optional<Surface> g1;
     // Edges with an explicit master (paper 000 Sec. 5.1) take its curvature
     // whatever the source elsewhere, so they need the G¹ patches too.
+    // Connection curves (Sec. 5.2) always average the two G¹ patches.
     const bool explicitMasters = std::any_of(network.segments().begin(), network.segments().end(),
-                                             [](const Segment &seg) { return seg.masterFace >= 0; });
+                                             [](const Segment &seg) { return seg.masterFace >= 0 || seg.connection; });
     if (options.edgeCurvature == EdgeCurvature::MasterSlave || options.edgeCurvature == EdgeCurvature::Averaging ||
         explicitMasters)
       g1 = Surface::build(network, {Scheme::GregoryG1, Sweepline::Radial, options.fenceNormals});
@@ -274,8 +275,11 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
         double kappa = 0;
         // The master face's side of the edge: named (paper 000 Sec. 5.1), or
         // faces[0] for MasterSlave; -1 averages both (Averaging).
-        const bool namedMaster = seg.masterFace >= 0;
-        const int masterSide = namedMaster ? (seg.faces[0] == seg.masterFace ? 0 : 1)
+        // Connection curves: both sides, averaged (-1), like named masters
+        // independent of the source chosen for the other edges.
+        const bool namedMaster = seg.masterFace >= 0 || seg.connection;
+        const int masterSide = seg.masterFace >= 0 ? (seg.faces[0] == seg.masterFace ? 0 : 1)
+                               : seg.connection ? -1
                                : options.edgeCurvature == EdgeCurvature::MasterSlave ? 0
                                                                                     : -1;
         if (!namedMaster && options.edgeCurvature == EdgeCurvature::Reference) {
