@@ -66,7 +66,7 @@ struct Bowl {
 NetworkDescription bowlNetwork(const std::string &name) {
   NetworkDescription net;
   net.name = name;
-  net.reference = ReferenceSurface{ReferenceSurface::Kind::Graph, Vec3{}, Vec3{kBowlX, kBowlY, 0}};
+  net.reference = ReferenceSurface{ReferenceSurface::Kind::Graph, Vec3{}, Vec3{kBowlX, kBowlY, 0}, nullptr};
   return net;
 }
 

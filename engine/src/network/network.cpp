@@ -294,11 +294,11 @@ Network Network::build(const NetworkDescription &input, const std::string &file)
     Vertex &vertex = net.vertices_[v];
     // A closed segment is listed twice: its first listing is its start end,
     // the second its end, so the two leave in opposite directions.
-    std::vector<int> seen(net.segments_.size(), 0);
+    std::vector<int> listed(net.segments_.size(), 0);
     for (int s : vertex.segments) {
       const Segment &seg = net.segments_[s];
       if (seg.isBoundary()) vertex.onBoundary = true;
-      const bool useStart = seg.start == static_cast<int>(v) && (seg.end != seg.start || seen[s]++ == 0);
+      const bool useStart = seg.start == static_cast<int>(v) && (seg.end != seg.start || listed[s]++ == 0);
       const Vec3 d = seg.curve.derivatives(useStart ? 0.0 : 1.0)[1];
       vertex.tangents.push_back(normalized(useStart ? d : -d));
     }

@@ -105,9 +105,9 @@ bool patchFolds(const Patch &patch) {
   const int n = domain.sides();
   auto normalAt = [&](const Vec2 &uv) {
     const DualVec3 r = patch.evaluate(uv.x, uv.y);
-    const Vec3 n = cross(r.du, r.dv);
-    if (!std::isfinite(r.v.x + r.v.y + r.v.z + n.x + n.y + n.z)) throw NonFinitePatch{};
-    return n;
+    const Vec3 normal = cross(r.du, r.dv);
+    if (!std::isfinite(r.v.x + r.v.y + r.v.z + normal.x + normal.y + normal.z)) throw NonFinitePatch{};
+    return normal;
   };
   for (int i = 0; i < n; ++i) {
     std::vector<std::vector<Vec3>> grid(rows);
