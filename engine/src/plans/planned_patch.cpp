@@ -110,22 +110,37 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
   const kernels::ConstDualVec3Span termIn{{term[0], term[1], term[2]}, {term[3], term[4], term[5]}, {term[6], term[7], term[8]}};
   const kernels::DualVec3Span accOut{{acc[0], acc[1], acc[2]}, {acc[3], acc[4], acc[5]}, {acc[6], acc[7], acc[8]}};
 
-  // Geometry: each side's ribbon at the plan's side parameters (batch per side).
-  for (int i = 0; i < n; ++i)
+  // Geometry: each side's ribbon at the plan's side parameters, one batch per
+  // side (the plan's samples run along rows, so consecutive side parameters
+  // mostly share a knot span).
+  thread_local std::vector<double> at;
+  thread_local std::vector<RibbonJet> linearJets;
+  thread_local std::vector<ParabolicJet> parabolicJets;
+  at.resize(count);
+  for (int i = 0; i < n; ++i) {
     for (std::size_t k = 0; k < count; ++k) {
       const Dual s = plan.side(i, first + k);
       side[i].set(k, s);
       blend[i].set(k, plan.blend(i, first + k));
-      const double at = ribbons_[i].snap(std::clamp(s.v, 0.0, 1.0));
-      if (g2) {
-        const ParabolicJet j = parabolic_[i].at(at);
+      at[k] = ribbons_[i].snap(std::clamp(s.v, 0.0, 1.0));
+    }
+    if (g2) {
+      parabolicJets.resize(count);
+      parabolic_[i].at(at, parabolicJets);
+      for (std::size_t k = 0; k < count; ++k) {
+        const ParabolicJet &j = parabolicJets[k];
         jets[i].P.set(k, j.P), jets[i].dP.set(k, j.dP), jets[i].T.set(k, j.T), jets[i].dT.set(k, j.dT);
         jets[i].C.set(k, j.C), jets[i].dC.set(k, j.dC);
-      } else {
-        const RibbonJet j = ribbons_[i].at(at);
+      }
+    } else {
+      linearJets.resize(count);
+      ribbons_[i].at(at, linearJets);
+      for (std::size_t k = 0; k < count; ++k) {
+        const RibbonJet &j = linearJets[k];
         jets[i].P.set(k, j.P), jets[i].dP.set(k, j.dP), jets[i].T.set(k, j.T), jets[i].dT.set(k, j.dT);
       }
     }
+  }
 
   for (int i = 0; i < n; ++i) {
     const int prev = domain_.wrap(i - 1);
