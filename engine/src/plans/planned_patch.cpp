@@ -58,14 +58,20 @@ struct JetArrays {
   }
 };
 
-/// (x a + y b) / (x + y) as weights on a and b.
+/// (x a + y b) / (x + y) as weights on a and b: wa = x / (x + y) with one
+/// division (its derivatives by the quotient rule with the shared
+/// reciprocal), wb = 1 − wa. The loops below call this 8 times per sample
+/// and side for G², where three divisions per Dual quotient were a large
+/// part of the evaluation.
 inline void rationalWeights(Dual x, Dual y, Dual &wa, Dual &wb) {
   const Dual sum = x + y;
   if (sum.v == 0) { // the corner itself (never a plan sample): the finite limit
     wa = wb = 0.5;
     return;
   }
-  wa = x / sum, wb = y / sum;
+  const double r = 1 / sum.v, q = x.v * r;
+  wa = {q, (x.du - q * sum.du) * r, (x.dv - q * sum.dv) * r};
+  wb = {1 - q, -wa.du, -wa.dv};
 }
 
 /// −B Q at one sample, summed over the corner vectors in registers while the
@@ -196,7 +202,8 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
             if (!p && !r) continue;
             Dual wa, wb;
             rationalWeights(sp[3 - p], tp[3 - r], wa, wb);
-            const Dual scale = minusB * sp[p] * tp[r] * Dual(inverseFactorial[p] * inverseFactorial[r]);
+            const double f = inverseFactorial[p] * inverseFactorial[r];
+            const Dual st = minusB * sp[p] * tp[r], scale{st.v * f, st.du * f, st.dv * f};
             sum.add(scale * wa, vectors[c++]);
             sum.add(scale * wb, vectors[c++]);
           }
