@@ -23,26 +23,28 @@ Vec3 projectOut(const Vec3 &v, const Vec3 &unitDirection) { return v - unitDirec
 
 // Second-order Taylor jets of univariate functions (value, d/du, d²/du²),
 // enough to differentiate the fence normal N = m/|m| twice by the chain rule.
+// Forced inline: they run per ribbon sample of every G² evaluation, and as
+// out-of-line calls returning structs they cost more than their arithmetic.
 struct ScalarJet {
   double v, d, dd;
 };
 struct VectorJet {
   Vec3 v, d, dd;
 };
-ScalarJet dot(const VectorJet &a, const VectorJet &b) {
+[[gnu::always_inline]] inline ScalarJet dot(const VectorJet &a, const VectorJet &b) {
   return {curvenet::dot(a.v, b.v), curvenet::dot(a.d, b.v) + curvenet::dot(a.v, b.d),
           curvenet::dot(a.dd, b.v) + 2 * curvenet::dot(a.d, b.d) + curvenet::dot(a.v, b.dd)};
 }
-VectorJet operator*(const VectorJet &a, const ScalarJet &s) {
+[[gnu::always_inline]] inline VectorJet operator*(const VectorJet &a, const ScalarJet &s) {
   return {a.v * s.v, a.d * s.v + a.v * s.d, a.dd * s.v + a.d * (2 * s.d) + a.v * s.dd};
 }
-VectorJet operator-(const VectorJet &a, const VectorJet &b) { return {a.v - b.v, a.d - b.d, a.dd - b.dd}; }
+[[gnu::always_inline]] inline VectorJet operator-(const VectorJet &a, const VectorJet &b) { return {a.v - b.v, a.d - b.d, a.dd - b.dd}; }
 /// x^(−1/2) for x > 0.
-ScalarJet inverseSqrt(const ScalarJet &x) {
+[[gnu::always_inline]] inline ScalarJet inverseSqrt(const ScalarJet &x) {
   const double g = 1 / std::sqrt(x.v), g3 = g * g * g, g5 = g3 * g * g;
   return {g, -0.5 * g3 * x.d, 0.75 * g5 * x.d * x.d - 0.5 * g3 * x.dd};
 }
-VectorJet normalizedJet(const VectorJet &a) { return a * inverseSqrt(dot(a, a)); }
+[[gnu::always_inline]] inline VectorJet normalizedJet(const VectorJet &a) { return a * inverseSqrt(dot(a, a)); }
 } // namespace
 
 NormalFence::NormalFence(const BSplineCurve &segment, const Vec3 &startNormal, const Vec3 &endNormal) {
