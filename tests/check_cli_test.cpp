@@ -143,3 +143,12 @@ TEST_F(CheckCli, TweakNeedsAnOutputAndBadInputIsNamed) {
 }
 
 } // namespace
+
+TEST_F(CheckCli, ThreadCountDoesNotChangeTheReport) {
+  const CliRun one = runCli("check builtin:pentagon --json --threads 1");
+  const CliRun two = runCli("check builtin:pentagon --json --threads 2");
+  ASSERT_EQ(one.status, 0) << one.out;
+  ASSERT_EQ(two.status, 0) << two.out;
+  EXPECT_EQ(one.out, two.out);
+  EXPECT_NE(runCli("check builtin:pentagon --threads -1").status, 0);
+}

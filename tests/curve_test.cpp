@@ -288,3 +288,132 @@ TEST(BSplineCurve, ArcLengthFarFromTheOriginAndAtACusp) {
   for (int k = 0; k < steps; ++k) polyline += norm(cusp.point((k + 1.0) / steps) - cusp.point(double(k) / steps));
   EXPECT_NEAR(cusp.arcLength(), polyline, 1e-8);
 }
+
+namespace {
+
+// Random clamped curve of the given degree: 2–6 spans with random lengths,
+// interior knots of multiplicity up to the degree, control points in a unit
+// box shifted away from the origin, weights in [0.3, 3] when rational.
+BSplineCurve randomCurve(std::mt19937 &rng, int degree, bool rational) {
+  std::uniform_real_distribution<double> unit(0, 1);
+  const int spans = 2 + static_cast<int>(rng() % 5);
+  std::vector<double> U(degree + 1, -0.4);
+  double knot = -0.4;
+  for (int s = 1; s < spans; ++s) {
+    knot += 0.05 + unit(rng);
+    const int multiplicity = 1 + static_cast<int>(rng() % degree);
+    U.insert(U.end(), multiplicity, knot);
+  }
+  knot += 0.05 + unit(rng);
+  U.insert(U.end(), degree + 1, knot);
+  const size_t count = U.size() - degree - 1;
+  std::vector<Vec3> P(count);
+  std::vector<double> W;
+  for (Vec3 &q : P) q = Vec3{2 + unit(rng), -1 + unit(rng), unit(rng)};
+  if (rational)
+    for (size_t i = 0; i < count; ++i) W.push_back(0.3 + 2.7 * unit(rng));
+  return BSplineCurve(degree, U, P, W);
+}
+
+} // namespace
+
+// The per-span Taylor form agrees with the basis-function algorithm (Piegl &
+// Tiller A2.3) to 1e-12 of each derivative's size over the curve, at knots,
+// just inside and outside them and at random interior parameters.
+TEST(Curve, TaylorFormAgreesWithBasisFunctionDerivatives) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int degree = 1; degree <= BSplineCurve::fastDegree; ++degree)
+    for (int rational = 0; rational < 2; ++rational)
+      for (int trial = 0; trial < 20; ++trial) {
+        const BSplineCurve curve = randomCurve(rng, degree, rational);
+        const double a = curve.domainStart(), b = curve.domainEnd();
+        std::vector<double> ts;
+        for (double u : curve.knots())
+          for (double offset : {0.0, -1e-9, 1e-9, -1e-3, 1e-3}) ts.push_back(u + offset * (b - a));
+        for (int k = 0; k < 50; ++k) ts.push_back(a + (b - a) * unit(rng));
+        std::vector<std::array<Vec3, 4>> reference(ts.size()), fast(ts.size());
+        std::array<double, 4> size{};
+        for (size_t k = 0; k < ts.size(); ++k) {
+          reference[k] = curve.derivativesReference(ts[k]);
+          fast[k] = curve.derivatives(ts[k]);
+          for (int order = 0; order < 4; ++order) size[order] = std::max(size[order], norm(reference[k][order]));
+        }
+        for (size_t k = 0; k < ts.size(); ++k)
+          for (int order = 0; order < 4; ++order) {
+            // Polynomial derivatives above the degree vanish exactly here (the
+            // reference leaves rounding residue of the weight sums there).
+            if (!rational && order > degree) {
+              ASSERT_EQ(fast[k][order], Vec3{});
+              continue;
+            }
+            ASSERT_LE(norm(fast[k][order] - reference[k][order]), 1e-12 * size[order])
+                << "degree " << degree << (rational ? " rational" : "") << ", t = " << ts[k] << ", order " << order;
+          }
+        EXPECT_LE(norm(curve.point(ts.back()) - reference.back()[0]), 1e-12 * size[0]);
+      }
+}
+
+// Above fastDegree evaluation stays on the reference path; degree 15 works.
+TEST(Curve, HighDegreesEvaluate) {
+  std::mt19937 rng(3);
+  for (int degree : {BSplineCurve::fastDegree + 1, BSplineCurve::maxDegree}) {
+    const BSplineCurve curve = randomCurve(rng, degree, true);
+    const double t = 0.3 * curve.domainStart() + 0.7 * curve.domainEnd();
+    const auto d = curve.derivatives(t), r = curve.derivativesReference(t);
+    for (int order = 0; order < 4; ++order) EXPECT_EQ(d[order], r[order]);
+    const Vec3 fd = (curve.point(t + 1e-6) - curve.point(t - 1e-6)) / 2e-6;
+    EXPECT_LE(norm(fd - d[1]), 1e-6 * norm(d[1]));
+  }
+}
+
+// Clamped ends are the end control points bit for bit (patch corners and
+// shared vertices rely on it), and the batch call equals single calls.
+TEST(Curve, EndsExactAndBatchEqualsSingleCalls) {
+  std::mt19937 rng(11);
+  for (int degree = 1; degree <= 7; ++degree)
+    for (int rational = 0; rational < 2; ++rational) {
+      const BSplineCurve curve = randomCurve(rng, degree, rational);
+      const double a = curve.domainStart(), b = curve.domainEnd();
+      // Rational ends are (w P) / w, rounded as the reference rounds them.
+      const Vec3 first = curve.derivativesReference(a)[0], last = curve.derivativesReference(b)[0];
+      if (!rational) {
+        EXPECT_TRUE(first == curve.controlPoints().front() && last == curve.controlPoints().back());
+      }
+      EXPECT_EQ(curve.point(a), first);
+      EXPECT_EQ(curve.point(b), last);
+      EXPECT_EQ(curve.derivatives(a)[0], first);
+      EXPECT_EQ(curve.derivatives(b)[0], last);
+      std::vector<double> ts;
+      for (int k = 0; k <= 100; ++k) ts.push_back(a + (b - a) * ((k * 37) % 101) / 100.0); // unsorted runs
+      for (int k = 0; k <= 100; ++k) ts.push_back(a + (b - a) * k / 100.0);              // sorted
+      std::vector<std::array<Vec3, 4>> batch(ts.size());
+      curve.derivatives(ts, batch);
+      for (size_t k = 0; k < ts.size(); ++k) EXPECT_EQ(batch[k], curve.derivatives(ts[k])) << ts[k];
+    }
+}
+
+// A smooth quintic with many short spans far from the origin (the shape of
+// the builtins' fitted curves): its derivatives up to the third are
+// continuous across the simple knots, and the Taylor form keeps them so to
+// 1e-12 of each derivative's size — its coefficients come from differences
+// of control points, not from the coordinates (the basis-function path
+// leaves jumps of ~4e-10 in the third derivative here).
+TEST(Curve, TaylorFormContinuousAcrossKnotsFarFromTheOrigin) {
+  std::vector<double> params;
+  std::vector<Vec3> points;
+  for (int i = 0; i <= 40; ++i) {
+    const double t = i / 40.0, angle = 0.6 * t;
+    params.push_back(t);
+    points.push_back(Vec3{1.0 + 0.45 * std::cos(angle), 0.3 + 0.45 * std::sin(angle), 0.2 * t * t});
+  }
+  const BSplineCurve curve = BSplineCurve::interpolate(5, params, points);
+  std::array<double, 4> size{}, jump{};
+  for (size_t i = curve.degree() + 1; i + curve.degree() + 1 < curve.knots().size(); ++i) {
+    const double u = curve.knots()[i];
+    const auto left = curve.derivatives(std::nextafter(u, -1.0)), right = curve.derivatives(u);
+    for (int k = 0; k < 4; ++k)
+      size[k] = std::max(size[k], norm(right[k])), jump[k] = std::max(jump[k], norm(left[k] - right[k]));
+  }
+  for (int k = 0; k < 4; ++k) EXPECT_LE(jump[k], 1e-12 * size[k]) << "order " << k;
+}

@@ -259,3 +259,53 @@ TEST(G2Options, QuinticSweepAndBadOptions) {
   EXPECT_EQ(schemeFromName("gregory-g2"), Scheme::GregoryG2);
   EXPECT_EQ(edgeCurvatureFromName("averaging"), EdgeCurvature::Averaging);
 }
+
+// Ribbons hand their curve's derivatives to the fence instead of letting it
+// evaluate its own copy of the segment: through the chain rule (a reversed
+// side, a side that is half the segment) the normals equal the fence's own to
+// rounding, and the batch calls equal the single calls bit for bit.
+TEST(Ribbons, SuppliedCurveJetAndBatchesAgreeWithTheFence) {
+  const Network &net = builtin("ellipsoid-truncated-icosahedron");
+  const Segment &seg = net.segments()[5];
+  const Vec3 n0 = cross(seg.curve.derivatives(0)[1], seg.curve.derivatives(0)[2]);
+  const Vec3 n1 = cross(seg.curve.derivatives(1)[1], seg.curve.derivatives(1)[2]);
+  const NormalFence fence = NormalFence::curvatureCompatible(seg.curve, normalized(n0), normalized(n1), 0.3, -0.2);
+  std::vector<double> samples(9, 0.5);
+  const TransversalCurvature kappa(samples);
+  struct Case {
+    BSplineCurve curve;
+    LinearRibbon::Piece piece;
+    double uAt0, dudS; // segment parameter u = uAt0 + dudS s
+  };
+  const std::vector<Case> cases = {
+      {seg.curve, {&fence, 0.0, 1.0, false, 5}, 0.0, 1.0},
+      {seg.curve.reversed(), {&fence, 0.0, 1.0, true, 5}, 1.0, -1.0},
+      // A side running over the segment's second half only, on [0, 1].
+      {seg.curve.restricted(0.5, 1.0).reparameterized(0, 1), {&fence, -1.0, 1.0, false, 5}, 0.5, 0.5},
+  };
+  for (const Case &c : cases) {
+    LinearRibbon linear(c.curve, {c.piece});
+    linear.setEndConditions(linear.fenceDirection(0), linear.fenceDirection(1));
+    const ParabolicRibbon parabolic(linear, {&kappa});
+    std::vector<double> s;
+    for (int k = 0; k <= 40; ++k) s.push_back(k / 40.0);
+    std::vector<RibbonJet> batch(s.size());
+    std::vector<ParabolicJet> parabolicBatch(s.size());
+    linear.at(s, batch);
+    parabolic.at(s, parabolicBatch);
+    for (size_t k = 0; k < s.size(); ++k) {
+      const RibbonJet single = linear.at(s[k]);
+      EXPECT_TRUE(single.P == batch[k].P && single.dP == batch[k].dP && single.T == batch[k].T &&
+                  single.dT == batch[k].dT);
+      const ParabolicJet p = parabolic.at(s[k]);
+      EXPECT_TRUE(p.C == parabolicBatch[k].C && p.dC == parabolicBatch[k].dC && p.T == parabolicBatch[k].T);
+      // The fence on its own copy of the segment, converted to d/ds.
+      const double u = c.uAt0 + c.dudS * s[k];
+      Vec3 n, dn;
+      fence.normalAndDerivative(u, n, dn);
+      const LinearRibbon::SecondJet j = linear.secondJet(s[k]);
+      EXPECT_LE(norm(j.N - n), 1e-12) << "s " << s[k];
+      EXPECT_LE(norm(j.dN - dn * c.dudS), 1e-10 * (1 + norm(dn))) << "s " << s[k];
+    }
+  }
+}

@@ -1,8 +1,11 @@
-// curvenet check INPUT [--scheme S] [--json] [--tweak -o FILE] — network
+// curvenet check INPUT [--scheme S] [--json] [--threads T] [--tweak -o FILE] — network
 // analysis (vertex enclosure, Euler constraint, curvature fit per vertex),
 // optionally the tweaked network, and the continuity and reference figures
 // of the surface built with scheme S.
+#include <tbb/global_control.h>
+
 #include <cstdio>
+#include <optional>
 
 #include "commands.hpp"
 #include "curvenet/analysis.hpp"
@@ -29,7 +32,7 @@ Command addCheckCommand(CLI::App &app) {
   struct Options {
     std::string input;
     std::string scheme = "gregory-g1";
-    int samples = 64, resolution = 32;
+    int samples = 64, resolution = 32, threads = 0;
     bool json = false;
     bool tweak = false;
     std::string output;
@@ -46,6 +49,7 @@ Command addCheckCommand(CLI::App &app) {
   sub->add_option("--resolution", options->resolution, "tessellation resolution for the reference deviation")
       ->check(CLI::Range(1, 4096))
       ->capture_default_str();
+  sub->add_option("--threads", options->threads, "worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
   CLI::Option *tweak = sub->add_flag("--tweak", options->tweak,
                                      "repair the curvatures at vertices that fail the Euler constraint "
                                      "(moves one control point per curve end along the vertex normal)");
@@ -53,6 +57,11 @@ Command addCheckCommand(CLI::App &app) {
   tweak->needs(output);
   output->needs(tweak);
   return {sub, [options] {
+            // Every parallel stage of the report (continuity, curvature,
+            // tessellation, reference deviation) runs under this limit; the
+            // figures do not depend on it.
+            std::optional<tbb::global_control> limit;
+            if (options->threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, options->threads);
             const Scheme scheme = parseScheme(options->scheme);
             const Network network = Network::build(loadNetworkInput(options->input), options->input);
             nlohmann::json report = networkReport(network, options->input);

@@ -8,9 +8,13 @@
 // Parameters: the curve is defined on [domainStart(), domainEnd()] = [knot p,
 // knot n] of the knot vector. Evaluation outside the domain clamps to it.
 //
-// Cost: evaluation of point and derivatives up to order 3 is O(p²) with no
-// heap allocation for p ≤ maxDegree. Curves are immutable values; all const
-// member functions may be called concurrently from any number of threads.
+// Cost: construction stores, per non-empty knot span, the span's polynomial
+// as Taylor coefficients at both span ends (homogeneous for rational curves),
+// O(p) doubles per span and O(p³) work per span. Evaluation of point and
+// derivatives up to order 3 is then a span lookup plus O(p) Horner steps
+// (degrees above fastDegree use the O(p²) basis-function path), with no heap
+// allocation. Curves are immutable values; all const member functions may be
+// called concurrently from any number of threads.
 #pragma once
 
 #include <array>
@@ -26,6 +30,10 @@ class BSplineCurve {
 public:
   /// Highest supported degree (allocation-free evaluation up to it).
   static constexpr int maxDegree = 15;
+  /// Highest degree evaluated through the per-span Taylor form; above it
+  /// evaluation keeps the basis-function algorithm (the power form's rounding
+  /// grows with the degree).
+  static constexpr int fastDegree = 10;
 
   BSplineCurve() = default;
 
@@ -57,6 +65,17 @@ public:
   /// k = 0..3 (derivatives above the degree are zero).
   std::array<Vec3, 4> derivatives(double t) const;
 
+  /// derivatives() at every t[k] into out[k] (out.size() ≥ t.size()). The
+  /// span found for one parameter is tried first for the next, so runs of
+  /// sorted parameters cost one span search per run. Results equal those of
+  /// derivatives(t[k]) bit for bit.
+  void derivatives(std::span<const double> t, std::span<std::array<Vec3, 4>> out) const;
+
+  /// The same as derivatives(t) by the basis-function derivatives of Piegl &
+  /// Tiller (Algorithm A2.3) at every call: O(p²), the reference the fast
+  /// path is tested against.
+  std::array<Vec3, 4> derivativesReference(double t) const;
+
   /// The same curve traversed backwards, on the same domain:
   /// reversed().point(a + b − t) == point(t).
   BSplineCurve reversed() const;
@@ -86,10 +105,21 @@ public:
 
 private:
   int findSpan(double t) const;
+  /// Index into breaks_ of the span holding t (clamped), hint tried first.
+  int fastSpan(double t, int hint) const;
+  std::array<Vec3, 4> fastDerivatives(double t, int span) const;
+  void buildSpans();
   int degree_ = 0;
   std::vector<double> knots_;
   std::vector<Vec3> points_;
   std::vector<double> weights_;
+  /// Distinct knots of the domain: span j is [breaks_[j], breaks_[j + 1]].
+  std::vector<double> breaks_;
+  /// Per span, 2 (p + 1) homogeneous coefficients (x, y, z, w): the Taylor
+  /// coefficients C^(k)/k! at the span start, then at its end, so each half
+  /// of a span is evaluated near its own expansion point and span ends are
+  /// reproduced exactly. Empty above fastDegree.
+  std::vector<std::array<double, 4>> taylor_;
 };
 
 } // namespace v1

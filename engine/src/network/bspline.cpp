@@ -103,6 +103,49 @@ int spanOf(std::span<const double> U, int p, int count, double t) {
   return static_cast<int>(it - U.begin()) - 1;
 }
 
+// The Taylor coefficients at x of the polynomial f(x) = Σ_j c[j] x^j of degree
+// P, up to order M: out[k] = f^(k)(x) / k!, by repeated synthetic division
+// (Horner's scheme applied M + 1 times, O(P M) operations per component).
+// Dim = 3 for polynomial curves, 4 (with the weight) for rational ones.
+template <int P, int Dim, int M>
+inline void taylorAt(const std::array<double, 4> *c, double x, double (&out)[M + 1][4]) {
+  double b[P + 1][Dim];
+  for (int j = 0; j <= P; ++j)
+    for (int d = 0; d < Dim; ++d) b[j][d] = c[j][d];
+  for (int k = 0; k <= M; ++k) {
+    if (k > P) {
+      for (int d = 0; d < Dim; ++d) out[k][d] = 0.0;
+      continue;
+    }
+    for (int j = P - 1; j >= k; --j)
+      for (int d = 0; d < Dim; ++d) b[j][d] += x * b[j + 1][d];
+    for (int d = 0; d < Dim; ++d) out[k][d] = b[k][d];
+  }
+}
+
+template <int M>
+void taylorAt(int p, bool rational, const std::array<double, 4> *c, double x, double (&out)[M + 1][4]) {
+#define CURVENET_TAYLOR_CASE(P)                                                                                \
+  case P:                                                                                                      \
+    return rational ? taylorAt<P, 4, M>(c, x, out) : taylorAt<P, 3, M>(c, x, out);
+  switch (p) {
+    CURVENET_TAYLOR_CASE(1)
+    CURVENET_TAYLOR_CASE(2)
+    CURVENET_TAYLOR_CASE(3)
+    CURVENET_TAYLOR_CASE(4)
+    CURVENET_TAYLOR_CASE(5)
+    CURVENET_TAYLOR_CASE(6)
+    CURVENET_TAYLOR_CASE(7)
+    CURVENET_TAYLOR_CASE(8)
+    CURVENET_TAYLOR_CASE(9)
+    CURVENET_TAYLOR_CASE(10)
+  default:
+    __builtin_unreachable(); // callers use the Taylor form only up to fastDegree
+  }
+#undef CURVENET_TAYLOR_CASE
+}
+static_assert(BSplineCurve::fastDegree == 10, "taylorAt has one case per degree up to fastDegree");
+
 // Boehm insertion of knot u once into (U, P) in homogeneous form (Algorithm A5.1, r = 1).
 void insertKnot(int p, std::vector<double> &U, std::vector<Homogeneous> &P, double u) {
   int count = static_cast<int>(P.size());
@@ -163,6 +206,98 @@ BSplineCurve::BSplineCurve(int degree, std::vector<double> knots, std::vector<Ve
     run = knots_[i] == knots_[i - 1] ? run + 1 : 1;
     if (run > static_cast<size_t>(degree_)) fail("interior knot multiplicity exceeds the degree");
   }
+  buildSpans();
+}
+
+void BSplineCurve::buildSpans() {
+  const int p = degree_, count = static_cast<int>(points_.size());
+  const std::vector<double> &U = knots_;
+  breaks_.clear();
+  taylor_.clear();
+  breaks_.push_back(domainStart());
+  for (int k = p; k < count; ++k)
+    if (U[k + 1] > U[k]) breaks_.push_back(U[k + 1]);
+  if (p > fastDegree) return;
+  taylor_.reserve(2 * (breaks_.size() - 1) * (p + 1));
+  // Homogeneous control points (w·P, w); for polynomial curves w = 1 exactly.
+  auto homogeneous = [&](int i) {
+    const double w = weights_.empty() ? 1.0 : weights_[i];
+    const Vec3 q = weights_.empty() ? points_[i] : w * points_[i];
+    return std::array<double, 4>{q.x, q.y, q.z, w};
+  };
+  // Per span s = [a, b]: e_k = C^(k)(a) / k! and C^(k)(b) / k!, homogeneous.
+  // C^(k) is the degree p − k B-spline on the derivative control points
+  // (Algorithm A3.3), evaluated at the span ends by de Boor's algorithm.
+  // Derivative control points are scaled differences of neighbouring control
+  // points, so each e_k carries rounding relative to the k-th derivative's own
+  // size, not to the coordinates: a curve far from the origin with many short
+  // spans keeps its third derivative as accurately as A2.3 does. At a
+  // clamped end every de Boor α is exactly 0 or 1, so e_0 there is the end
+  // control point bit for bit.
+  for (int s = p; s < count; ++s) {
+    if (!(U[s + 1] > U[s])) continue;
+    const double ends[2] = {U[s], U[s + 1]};
+    std::array<std::array<std::array<double, 4>, kMaxOrder>, kMaxOrder> Q; // Q[k][j], j = 0..p−k
+    for (int j = 0; j <= p; ++j) Q[0][j] = homogeneous(s - p + j);
+    for (int k = 1; k <= p; ++k)
+      for (int j = 0; j <= p - k; ++j) {
+        const double scale = (p - k + 1) / (U[s + j + 1] - U[s - p + j + k]);
+        for (int c = 0; c < 4; ++c) Q[k][j][c] = scale * (Q[k - 1][j + 1][c] - Q[k - 1][j][c]);
+      }
+    const std::size_t start = taylor_.size();
+    taylor_.resize(start + 2 * (p + 1));
+    for (int end = 0; end < 2; ++end) {
+      const double t = ends[end];
+      double factorial = 1;
+      for (int k = 0; k <= p; ++k) {
+        if (k > 1) factorial *= k;
+        const int q = p - k;
+        std::array<std::array<double, 4>, kMaxOrder> d = Q[k];
+        for (int r = 1; r <= q; ++r)
+          for (int j = q; j >= r; --j) {
+            const int g = s - q + j;
+            const double alpha = (t - U[g]) / (U[g + q + 1 - r] - U[g]);
+            for (int c = 0; c < 4; ++c) d[j][c] = (1 - alpha) * d[j - 1][c] + alpha * d[j][c];
+          }
+        for (int c = 0; c < 4; ++c) taylor_[start + end * (p + 1) + k][c] = d[q][c] / factorial;
+      }
+    }
+  }
+}
+
+int BSplineCurve::fastSpan(double t, int hint) const {
+  const int last = static_cast<int>(breaks_.size()) - 2;
+  if (hint >= 0 && hint <= last && breaks_[hint] <= t && (hint == last || t < breaks_[hint + 1])) return hint;
+  // First interior break > t; the span before it holds t.
+  auto it = std::upper_bound(breaks_.begin() + 1, breaks_.begin() + last + 1, t);
+  return static_cast<int>(it - breaks_.begin()) - 1;
+}
+
+std::array<Vec3, 4> BSplineCurve::fastDerivatives(double t, int span) const {
+  const int p = degree_;
+  const double a = breaks_[span], b = breaks_[span + 1];
+  // Each half of the span is evaluated from the expansion at its own end.
+  const bool fromStart = t - a <= b - t;
+  const double x = fromStart ? t - a : t - b;
+  const std::array<double, 4> *c = taylor_.data() + (2 * span + (fromStart ? 0 : 1)) * (p + 1);
+  double jet[4][4];
+  const bool rational = !weights_.empty();
+  taylorAt<3>(p, rational, c, x, jet);
+  // d^k/dt^k = k! × (k-th Taylor coefficient at t).
+  constexpr double scale[4] = {1.0, 1.0, 2.0, 6.0};
+  std::array<Vec3, 4> A;
+  for (int k = 0; k < 4; ++k) A[k] = Vec3{jet[k][0], jet[k][1], jet[k][2]} * scale[k];
+  if (!rational) return A;
+  const double W[4] = {jet[0][3], jet[1][3] * scale[1], jet[2][3] * scale[2], jet[3][3] * scale[3]};
+  // C^(k) = (A^(k) − Σ_{i=1..k} binom(k,i) w^(i) C^(k−i)) / w, as in derivativesReference.
+  static constexpr int binom[4][4] = {{1, 0, 0, 0}, {1, 1, 0, 0}, {1, 2, 1, 0}, {1, 3, 3, 1}};
+  std::array<Vec3, 4> C{};
+  for (int k = 0; k <= 3; ++k) {
+    Vec3 v = A[k];
+    for (int i = 1; i <= k; ++i) v -= (binom[k][i] * W[i]) * C[k - i];
+    C[k] = v / W[0];
+  }
+  return C;
 }
 
 BSplineCurve BSplineCurve::bezier(std::vector<Vec3> controlPoints) {
@@ -179,6 +314,17 @@ int BSplineCurve::findSpan(double t) const {
 
 Vec3 BSplineCurve::point(double t) const {
   t = std::clamp(t, domainStart(), domainEnd());
+  if (!taylor_.empty()) {
+    const int span = fastSpan(t, -1), p = degree_;
+    const double a = breaks_[span], b = breaks_[span + 1];
+    const bool fromStart = t - a <= b - t;
+    const double x = fromStart ? t - a : t - b;
+    double jet[1][4];
+    const bool rational = !weights_.empty();
+    taylorAt<0>(p, rational, taylor_.data() + (2 * span + (fromStart ? 0 : 1)) * (p + 1), x, jet);
+    const Vec3 A{jet[0][0], jet[0][1], jet[0][2]};
+    return rational ? A / jet[0][3] : A;
+  }
   const int p = degree_, span = findSpan(t);
   std::array<std::array<double, kMaxOrder>, 4> N;
   basisDerivatives(span, t, p, 0, knots_, N);
@@ -194,6 +340,26 @@ Vec3 BSplineCurve::point(double t) const {
 }
 
 std::array<Vec3, 4> BSplineCurve::derivatives(double t) const {
+  if (taylor_.empty()) return derivativesReference(t);
+  t = std::clamp(t, domainStart(), domainEnd());
+  return fastDerivatives(t, fastSpan(t, -1));
+}
+
+void BSplineCurve::derivatives(std::span<const double> t, std::span<std::array<Vec3, 4>> out) const {
+  CURVENET_CHECK(out.size() >= t.size(), "derivatives: output shorter than the parameters");
+  if (taylor_.empty()) {
+    for (std::size_t k = 0; k < t.size(); ++k) out[k] = derivativesReference(t[k]);
+    return;
+  }
+  int span = 0;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    const double u = std::clamp(t[k], domainStart(), domainEnd());
+    span = fastSpan(u, span);
+    out[k] = fastDerivatives(u, span);
+  }
+}
+
+std::array<Vec3, 4> BSplineCurve::derivativesReference(double t) const {
   t = std::clamp(t, domainStart(), domainEnd());
   const int p = degree_, span = findSpan(t), order = std::min(3, p);
   std::array<std::array<double, kMaxOrder>, 4> N;

@@ -119,6 +119,8 @@ DualVec3 Patch::evaluate(double u, double v) const {
   case Scheme::CompositeRibbon: return compositeRibbon(du, dv);
   case Scheme::GregoryG2: return gregoryG2(du, dv);
   case Scheme::GregoryG1: break;
+  case Scheme::BezierG1:
+  case Scheme::CoonsC0: CURVENET_CHECK(false, "Bézier schemes have no transfinite patch"); break;
   }
   return gregory(du, dv);
 }

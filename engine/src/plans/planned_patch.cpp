@@ -3,7 +3,7 @@
 // Gregory formula (paper 000 eqs. 16–18, 22) as structure-of-arrays passes
 // of the SIMD kernels — two ribbon points per corner, their blend-weighted
 // sum, and the correction patch as blend × correction weights times the
-// corner vectors.
+// corner vectors (summed per sample while the weights are computed).
 #include <algorithm>
 #include <array>
 #include <vector>
@@ -58,15 +58,36 @@ struct JetArrays {
   }
 };
 
-/// (x a + y b) / (x + y) as weights on a and b.
+/// (x a + y b) / (x + y) as weights on a and b: wa = x / (x + y) with one
+/// division (its derivatives by the quotient rule with the shared
+/// reciprocal), wb = 1 − wa. The loops below call this 8 times per sample
+/// and side for G², where three divisions per Dual quotient were a large
+/// part of the evaluation.
 inline void rationalWeights(Dual x, Dual y, Dual &wa, Dual &wb) {
   const Dual sum = x + y;
   if (sum.v == 0) { // the corner itself (never a plan sample): the finite limit
     wa = wb = 0.5;
     return;
   }
-  wa = x / sum, wb = y / sum;
+  const double r = 1 / sum.v, q = x.v * r;
+  wa = {q, (x.du - q * sum.du) * r, (x.dv - q * sum.dv) * r};
+  wb = {1 - q, -wa.du, -wa.dv};
 }
+
+/// −B Q at one sample, summed over the corner vectors in registers while the
+/// weights are computed: one pass over the accumulators per side instead of
+/// one memory pass per corner vector (17 for G²).
+struct CorrectionSum {
+  double c[9] = {}; // value xyz, d/du xyz, d/dv xyz
+  void add(const Dual &w, const Vec3 &v) {
+    c[0] += w.v * v.x, c[1] += w.v * v.y, c[2] += w.v * v.z;
+    c[3] += w.du * v.x, c[4] += w.du * v.y, c[5] += w.du * v.z;
+    c[6] += w.dv * v.x, c[7] += w.dv * v.y, c[8] += w.dv * v.z;
+  }
+  void addTo(double *const *acc, std::size_t k) const {
+    for (int i = 0; i < 9; ++i) acc[i][k] += c[i];
+  }
+};
 
 constexpr int kMaxSides = 8;
 constexpr int kMaxCornerVectors = 17; // a00 and the eight (a, b) pairs of eq. 22
@@ -91,7 +112,7 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
   const bool g2 = options_.scheme == Scheme::GregoryG2;
   thread_local Scratch scratch;
   const std::size_t jetArrays = g2 ? 18 : 12;
-  scratch.reset(count, static_cast<std::size_t>(n) * (6 + jetArrays) + 3 + 9 + 9 + 3 * kMaxCornerVectors);
+  scratch.reset(count, static_cast<std::size_t>(n) * (6 + jetArrays) + 3 + 9 + 9);
   std::array<DualArray, kMaxSides> side, blend;
   std::array<JetArrays, kMaxSides> jets;
   for (int i = 0; i < n; ++i) {
@@ -104,28 +125,41 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
   double *term[9], *acc[9];
   for (double *&p : term) p = scratch.take();
   for (double *&p : acc) p = scratch.take(), std::fill(p, p + count, 0.0);
-  std::array<DualArray, kMaxCornerVectors> weight;
-  for (DualArray &w : weight) w.take(scratch);
   const kernels::DualVec3Span termOut{{term[0], term[1], term[2]}, {term[3], term[4], term[5]}, {term[6], term[7], term[8]}};
   const kernels::ConstDualVec3Span termIn{{term[0], term[1], term[2]}, {term[3], term[4], term[5]}, {term[6], term[7], term[8]}};
   const kernels::DualVec3Span accOut{{acc[0], acc[1], acc[2]}, {acc[3], acc[4], acc[5]}, {acc[6], acc[7], acc[8]}};
 
-  // Geometry: each side's ribbon at the plan's side parameters (batch per side).
-  for (int i = 0; i < n; ++i)
+  // Geometry: each side's ribbon at the plan's side parameters, one batch per
+  // side (the plan's samples run along rows, so consecutive side parameters
+  // mostly share a knot span).
+  thread_local std::vector<double> at;
+  thread_local std::vector<RibbonJet> linearJets;
+  thread_local std::vector<ParabolicJet> parabolicJets;
+  at.resize(count);
+  for (int i = 0; i < n; ++i) {
     for (std::size_t k = 0; k < count; ++k) {
       const Dual s = plan.side(i, first + k);
       side[i].set(k, s);
       blend[i].set(k, plan.blend(i, first + k));
-      const double at = ribbons_[i].snap(std::clamp(s.v, 0.0, 1.0));
-      if (g2) {
-        const ParabolicJet j = parabolic_[i].at(at);
+      at[k] = ribbons_[i].snap(std::clamp(s.v, 0.0, 1.0));
+    }
+    if (g2) {
+      parabolicJets.resize(count);
+      parabolic_[i].at(at, parabolicJets);
+      for (std::size_t k = 0; k < count; ++k) {
+        const ParabolicJet &j = parabolicJets[k];
         jets[i].P.set(k, j.P), jets[i].dP.set(k, j.dP), jets[i].T.set(k, j.T), jets[i].dT.set(k, j.dT);
         jets[i].C.set(k, j.C), jets[i].dC.set(k, j.dC);
-      } else {
-        const RibbonJet j = ribbons_[i].at(at);
+      }
+    } else {
+      linearJets.resize(count);
+      ribbons_[i].at(at, linearJets);
+      for (std::size_t k = 0; k < count; ++k) {
+        const RibbonJet &j = linearJets[k];
         jets[i].P.set(k, j.P), jets[i].dP.set(k, j.dP), jets[i].T.set(k, j.T), jets[i].dT.set(k, j.dT);
       }
     }
+  }
 
   for (int i = 0; i < n; ++i) {
     const int prev = domain_.wrap(i - 1);
@@ -139,7 +173,6 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
 
     // Correction patch: −B Q = Σ_c (−B ω_c) V_c over the corner vectors V_c.
     std::array<Vec3, kMaxCornerVectors> vectors;
-    int used = 0;
     if (g2) {
       const SideEndData &end = parabolic_[prev].end(), &start = parabolic_[i].start();
       // The corner data of cornerData2 (patch.cpp): a from R_{i−1}(1 − t, s), b from R_i(s, t).
@@ -151,49 +184,50 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
       b[1][0] = start.dP, b[2][0] = start.ddP;
       b[0][1] = start.T, b[1][1] = start.dT, b[2][1] = start.ddT;
       b[0][2] = start.C, b[1][2] = start.dC, b[2][2] = start.ddC;
+      int used = 0;
       vectors[used++] = a[0][0];
       for (int p = 0; p <= 2; ++p)
         for (int r = 0; r <= 2; ++r)
           if (p || r) vectors[used++] = a[p][r], vectors[used++] = b[p][r];
       constexpr double inverseFactorial[3] = {1.0, 1.0, 0.5};
       for (std::size_t k = 0; k < count; ++k) {
+        CorrectionSum sum;
         const Dual s{side[i].v[k], side[i].du[k], side[i].dv[k]}, t{across.v[k], across.du[k], across.dv[k]};
         const Dual minusB = -Dual{blend[i].v[k], blend[i].du[k], blend[i].dv[k]};
         const Dual sp[4] = {1.0, s, s * s, s * s * s}, tp[4] = {1.0, t, t * t, t * t * t};
         int c = 0;
-        weight[c++].set(k, minusB);
+        sum.add(minusB, vectors[c++]);
         for (int p = 0; p <= 2; ++p)
           for (int r = 0; r <= 2; ++r) {
             if (!p && !r) continue;
             Dual wa, wb;
             rationalWeights(sp[3 - p], tp[3 - r], wa, wb);
-            const Dual scale = minusB * sp[p] * tp[r] * Dual(inverseFactorial[p] * inverseFactorial[r]);
-            weight[c++].set(k, scale * wa);
-            weight[c++].set(k, scale * wb);
+            const double f = inverseFactorial[p] * inverseFactorial[r];
+            const Dual st = minusB * sp[p] * tp[r], scale{st.v * f, st.du * f, st.dv * f};
+            sum.add(scale * wa, vectors[c++]);
+            sum.add(scale * wb, vectors[c++]);
           }
+        sum.addTo(acc, k);
       }
     } else {
       const RibbonJet start = ribbons_[i].at(0.0), end = ribbons_[prev].at(1.0);
       // CornerData{a00, a10, a01, a11, b10, b01, b11} of Patch::gregory.
       vectors = {start.P, end.T, start.dP, -end.dP, start.T, -end.dT, start.dT};
-      used = 7;
       for (std::size_t k = 0; k < count; ++k) {
         const Dual s{side[i].v[k], side[i].du[k], side[i].dv[k]}, t{across.v[k], across.du[k], across.dv[k]};
         const Dual minusB = -Dual{blend[i].v[k], blend[i].du[k], blend[i].dv[k]};
         // Q = a00 + s W(a10, b10; s, t²) + t W(a01, b01; s², t) + s t W(a11, b11; s, t).
         Dual wa, wb;
-        weight[0].set(k, minusB);
+        CorrectionSum sum;
+        sum.add(minusB, vectors[0]);
         rationalWeights(s, t * t, wa, wb);
-        weight[1].set(k, minusB * s * wa), weight[2].set(k, minusB * s * wb);
+        sum.add(minusB * s * wa, vectors[1]), sum.add(minusB * s * wb, vectors[2]);
         rationalWeights(s * s, t, wa, wb);
-        weight[3].set(k, minusB * t * wa), weight[4].set(k, minusB * t * wb);
+        sum.add(minusB * t * wa, vectors[3]), sum.add(minusB * t * wb, vectors[4]);
         rationalWeights(s, t, wa, wb);
-        weight[5].set(k, minusB * s * t * wa), weight[6].set(k, minusB * s * t * wb);
+        sum.add(minusB * s * t * wa, vectors[5]), sum.add(minusB * s * t * wb, vectors[6]);
+        sum.addTo(acc, k);
       }
-    }
-    for (int c = 0; c < used; ++c) {
-      const double v[3] = {vectors[c].x, vectors[c].y, vectors[c].z};
-      kernels::accumulateConstant(count, weight[c].span(), v, accOut);
     }
   }
   for (std::size_t k = 0; k < count; ++k)

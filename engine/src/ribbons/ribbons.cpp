@@ -24,26 +24,28 @@ Vec3 projectOut(const Vec3 &v, const Vec3 &unitDirection) { return v - unitDirec
 
 // Second-order Taylor jets of univariate functions (value, d/du, d²/du²),
 // enough to differentiate the fence normal N = m/|m| twice by the chain rule.
+// Forced inline: they run per ribbon sample of every G² evaluation, and as
+// out-of-line calls returning structs they cost more than their arithmetic.
 struct ScalarJet {
   double v, d, dd;
 };
 struct VectorJet {
   Vec3 v, d, dd;
 };
-ScalarJet dot(const VectorJet &a, const VectorJet &b) {
+[[gnu::always_inline]] inline ScalarJet dot(const VectorJet &a, const VectorJet &b) {
   return {curvenet::dot(a.v, b.v), curvenet::dot(a.d, b.v) + curvenet::dot(a.v, b.d),
           curvenet::dot(a.dd, b.v) + 2 * curvenet::dot(a.d, b.d) + curvenet::dot(a.v, b.dd)};
 }
-VectorJet operator*(const VectorJet &a, const ScalarJet &s) {
+[[gnu::always_inline]] inline VectorJet operator*(const VectorJet &a, const ScalarJet &s) {
   return {a.v * s.v, a.d * s.v + a.v * s.d, a.dd * s.v + a.d * (2 * s.d) + a.v * s.dd};
 }
-VectorJet operator-(const VectorJet &a, const VectorJet &b) { return {a.v - b.v, a.d - b.d, a.dd - b.dd}; }
+[[gnu::always_inline]] inline VectorJet operator-(const VectorJet &a, const VectorJet &b) { return {a.v - b.v, a.d - b.d, a.dd - b.dd}; }
 /// x^(−1/2) for x > 0.
-ScalarJet inverseSqrt(const ScalarJet &x) {
+[[gnu::always_inline]] inline ScalarJet inverseSqrt(const ScalarJet &x) {
   const double g = 1 / std::sqrt(x.v), g3 = g * g * g, g5 = g3 * g * g;
   return {g, -0.5 * g3 * x.d, 0.75 * g5 * x.d * x.d - 0.5 * g3 * x.dd};
 }
-VectorJet normalizedJet(const VectorJet &a) { return a * inverseSqrt(dot(a, a)); }
+[[gnu::always_inline]] inline VectorJet normalizedJet(const VectorJet &a) { return a * inverseSqrt(dot(a, a)); }
 } // namespace
 
 NormalFence::NormalFence(const BSplineCurve &segment, const Vec3 &startNormal, const Vec3 &endNormal) {
@@ -141,9 +143,12 @@ Vec3 NormalFence::normal(double u) const {
 }
 
 void NormalFence::normalAndDerivative(double u, Vec3 &n, Vec3 &dn) const {
+  normalAndDerivative(u, curve_.derivatives(u), n, dn);
+}
+
+void NormalFence::normalAndDerivative(double u, const std::array<Vec3, 4> &c, Vec3 &n, Vec3 &dn) const {
   // N = m / |m| with m = Ñ − (Ñ·t) t: the interpolant with its tangential
   // part removed, so N ⊥ P' holds exactly; derivatives by the chain rule.
-  const auto c = curve_.derivatives(u);
   const auto f = smoothNormal_.derivatives(u);
   const double speed = norm(c[1]);
   const Vec3 t = c[1] / speed;
@@ -157,7 +162,10 @@ void NormalFence::normalAndDerivative(double u, Vec3 &n, Vec3 &dn) const {
 }
 
 void NormalFence::normalJet(double u, Vec3 &n, Vec3 &dn, Vec3 &ddn) const {
-  const auto c = curve_.derivatives(u);
+  normalJet(u, curve_.derivatives(u), n, dn, ddn);
+}
+
+void NormalFence::normalJet(double u, const std::array<Vec3, 4> &c, Vec3 &n, Vec3 &dn, Vec3 &ddn) const {
   const auto f = smoothNormal_.derivatives(u);
   const VectorJet t = normalizedJet({c[1], c[2], c[3]});
   const VectorJet fj{f[0], f[1], f[2]};
@@ -229,10 +237,33 @@ std::array<double, 3> LinearRibbon::profile(double s) const {
   return {s, 1, 0};
 }
 
-RibbonJet LinearRibbon::at(double s) const {
-  const auto c = curve_.derivatives(s);
+namespace {
+/// The segment's derivatives with respect to its own parameter u from the
+/// ribbon curve's with respect to s, where u is affine in s with du/ds =
+/// dLocal: the side curve and the segment are the same piece of one source
+/// curve (exact knot insertion), so only the chain rule separates them.
+std::array<Vec3, 4> segmentJet(const std::array<Vec3, 4> &c, double dLocal) {
+  const double r = 1 / dLocal;
+  return {c[0], c[1] * r, c[2] * (r * r), c[3] * (r * r * r)};
+}
+} // namespace
+
+RibbonJet LinearRibbon::at(double s) const { return jet(s, curve_.derivatives(s)); }
+
+void LinearRibbon::at(std::span<const double> s, std::span<RibbonJet> out) const {
+  CURVENET_CHECK(out.size() >= s.size(), "ribbon batch: output shorter than the parameters");
+  thread_local std::vector<std::array<Vec3, 4>> curve;
+  curve.resize(s.size());
+  curve_.derivatives(s, curve);
+  for (std::size_t k = 0; k < s.size(); ++k) out[k] = jet(s[k], curve[k]);
+}
+
+RibbonJet LinearRibbon::jet(double s, const std::array<Vec3, 4> &c) const {
+  double local, dLocal;
+  const Piece &piece = pieces_[pieceAt(s, local, dLocal)];
   Vec3 n, dn;
-  fence(s, n, dn);
+  piece.fence->normalAndDerivative(local, segmentJet(c, dLocal), n, dn);
+  dn = dn * dLocal;
   const Vec3 D = cross(n, c[1]);
   const Vec3 dD = cross(dn, c[1]) + cross(n, c[2]);
   const auto h = profile(s);
@@ -241,13 +272,14 @@ RibbonJet LinearRibbon::at(double s) const {
   return {c[0], c[1], D * alpha + c[1] * beta, D * dAlpha + dD * alpha + c[1] * dBeta + c[2] * beta};
 }
 
-LinearRibbon::SecondJet LinearRibbon::secondJet(double s) const {
+LinearRibbon::SecondJet LinearRibbon::secondJet(double s) const { return secondJet(s, curve_.derivatives(s)); }
+
+LinearRibbon::SecondJet LinearRibbon::secondJet(double s, const std::array<Vec3, 4> &c) const {
   SecondJet j;
-  const auto c = curve_.derivatives(s);
   j.P = c[0], j.dP = c[1], j.ddP = c[2], j.dddP = c[3];
   double local, dLocal;
   const Piece &piece = pieces_[pieceAt(s, local, dLocal)];
-  piece.fence->normalJet(local, j.N, j.dN, j.ddN);
+  piece.fence->normalJet(local, segmentJet(c, dLocal), j.N, j.dN, j.ddN);
   j.dN = j.dN * dLocal;
   j.ddN = j.ddN * (dLocal * dLocal);
   j.D = cross(j.N, j.dP);
@@ -271,8 +303,18 @@ ParabolicRibbon::ParabolicRibbon(LinearRibbon linear, std::vector<const Transver
   end_ = secondOrder(1.0);
 }
 
-ParabolicJet ParabolicRibbon::at(double s) const {
-  const LinearRibbon::SecondJet j = linear_.secondJet(s);
+ParabolicJet ParabolicRibbon::at(double s) const { return jet(s, linear_.curve().derivatives(s)); }
+
+void ParabolicRibbon::at(std::span<const double> s, std::span<ParabolicJet> out) const {
+  CURVENET_CHECK(out.size() >= s.size(), "ribbon batch: output shorter than the parameters");
+  thread_local std::vector<std::array<Vec3, 4>> curve;
+  curve.resize(s.size());
+  linear_.curve().derivatives(s, curve);
+  for (std::size_t k = 0; k < s.size(); ++k) out[k] = jet(s[k], curve[k]);
+}
+
+ParabolicJet ParabolicRibbon::jet(double s, const std::array<Vec3, 4> &c) const {
+  const LinearRibbon::SecondJet j = linear_.secondJet(s, c);
   double local, dLocal;
   const int piece = linear_.pieceAt(s, local, dLocal);
   double kappa, dKappa;

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "curvenet/network.hpp"
@@ -52,8 +53,15 @@ public:
   Vec3 normal(double u) const;
   /// Normal and its derivative d N / d u.
   void normalAndDerivative(double u, Vec3 &n, Vec3 &dn) const;
+  /// The same with the segment's derivatives at u (d^k C / du^k, k = 0..3, as
+  /// BSplineCurve::derivatives gives them) supplied by the caller, which has
+  /// usually just evaluated the curve: the fence then evaluates only its
+  /// normal interpolant. N ⊥ curve[1] holds exactly for the given tangent.
+  void normalAndDerivative(double u, const std::array<Vec3, 4> &curve, Vec3 &n, Vec3 &dn) const;
   /// Normal and its first two derivatives with respect to u.
   void normalJet(double u, Vec3 &n, Vec3 &dn, Vec3 &ddn) const;
+  /// The same with the segment's derivatives at u supplied (see above).
+  void normalJet(double u, const std::array<Vec3, 4> &curve, Vec3 &n, Vec3 &dn, Vec3 &ddn) const;
 
 private:
   NormalFence() = default;
@@ -127,6 +135,11 @@ public:
 
   const BSplineCurve &curve() const { return curve_; }
   RibbonJet at(double s) const;
+  /// at(s[k]) into out[k] for every k (out.size() ≥ s.size()), bit for bit:
+  /// the curve is evaluated once per sample in one batch (sorted parameters
+  /// share span searches) and its derivatives are handed to the fence, so
+  /// each sample costs one curve and one fence-interpolant evaluation.
+  void at(std::span<const double> s, std::span<RibbonJet> out) const;
   /// D = N × P' at the ends (for straight-angle corners).
   Vec3 fenceDirection(double s) const;
 
@@ -138,6 +151,8 @@ public:
     double alpha, dAlpha, beta, dBeta;
   };
   SecondJet secondJet(double s) const;
+  /// secondJet(s) from the ribbon curve's derivatives at s (curve().derivatives(s)).
+  SecondJet secondJet(double s, const std::array<Vec3, 4> &curve) const;
   const std::vector<Piece> &pieces() const { return pieces_; }
   /// s moved onto a segment break when within 1e-12 of it. The ribbon's
   /// derivatives jump at a break (each segment has its own fence), so two
@@ -157,6 +172,7 @@ private:
   /// The blend of α, β at s with its first two derivatives.
   std::array<double, 3> profile(double s) const;
   void fence(double s, Vec3 &n, Vec3 &dn) const;
+  RibbonJet jet(double s, const std::array<Vec3, 4> &curve) const;
   BSplineCurve curve_;
   std::vector<Piece> pieces_;
   double alpha0_ = 0, alpha1_ = 0, beta0_ = 0, beta1_ = 0;
@@ -178,6 +194,9 @@ public:
 
   const LinearRibbon &linear() const { return linear_; }
   ParabolicJet at(double s) const;
+  /// at(s[k]) into out[k] for every k (out.size() ≥ s.size()), bit for bit,
+  /// with the curve evaluated once per sample in one batch (see LinearRibbon::at).
+  void at(std::span<const double> s, std::span<ParabolicJet> out) const;
   /// κ_T at s: the normal curvature of the ribbon in the direction of T.
   double crossCurvature(double s) const;
   /// Correction-patch data at s = 0 and s = 1 (C'' by a fourth-order
@@ -190,6 +209,7 @@ public:
   SideEndData secondOrder(double s) const;
 
 private:
+  ParabolicJet jet(double s, const std::array<Vec3, 4> &curve) const;
   LinearRibbon linear_;
   std::vector<const TransversalCurvature *> curvatures_;
   SideEndData start_, end_;
