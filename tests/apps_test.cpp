@@ -7,6 +7,8 @@
 // remains available to the test as the independent check.
 #include <gtest/gtest.h>
 
+#include "cli_support.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <array>
@@ -28,6 +30,8 @@
 #include "curvenet/mesh_reference.hpp"
 
 using namespace curvenet;
+using curvenet::test::CliRun;
+using curvenet::test::runCli;
 namespace fs = std::filesystem;
 
 namespace {
@@ -62,23 +66,6 @@ const ApproximationResult &approximation(const std::string &name) {
   options.resolution = 16; // Gauss–Newton refines every foot: a coarse tessellation suffices
   options.curvatureSamples = 5;
   return cache.emplace(name, approximateMesh(t.mesh, t.polylines, options)).first->second;
-}
-
-struct CliRun {
-  int status = -1;
-  std::string out;
-};
-
-CliRun runCli(const std::string &args) {
-  CliRun run;
-  const std::string command = std::string(CURVENET_CLI) + " " + args + " 2>&1";
-  FILE *pipe = ::popen(command.c_str(), "r");
-  if (!pipe) return run;
-  std::array<char, 4096> buffer{};
-  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) run.out.append(buffer.data(), n);
-  const int status = ::pclose(pipe);
-  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
 }
 
 } // namespace
@@ -252,13 +239,13 @@ TEST(MeshApproximation, CommandLine) {
   const std::string report = (dir / "r.json").string();
   const CliRun first = runCli("approximate builtin:pentagon builtin:pentagon -o " + (dir / "g2.obj").string() +
                               " --report " + report + " --write-inputs " + dir.string() + " --resolution 12");
-  ASSERT_EQ(first.status, 0) << first.out;
+  ASSERT_EQ(first.exitCode, 0) << first.out;
   EXPECT_NE(first.out.find("G1/G2 max |d| ratio"), std::string::npos);
   nlohmann::json a = nlohmann::json::parse(std::ifstream(report));
   const CliRun second = runCli("approximate " + (dir / "pentagon-mesh.obj").string() + " " +
                                (dir / "pentagon-curves.json").string() + " -o " + (dir / "g2b.obj").string() +
                                " --report " + report + " --resolution 12");
-  ASSERT_EQ(second.status, 0) << second.out;
+  ASSERT_EQ(second.exitCode, 0) << second.out;
   nlohmann::json b = nlohmann::json::parse(std::ifstream(report));
   for (const char *key : {"g1", "g2"}) {
     EXPECT_NEAR(a[key]["deviation"]["max_abs"].get<double>(), b[key]["deviation"]["max_abs"].get<double>(), 1e-9);
@@ -273,8 +260,8 @@ TEST(MeshApproximation, CommandLine) {
   // Bad input: a clear error and exit code 1.
   const CliRun bad = runCli("approximate " + (dir / "missing.obj").string() + " builtin:pentagon -o " +
                             (dir / "x.obj").string());
-  EXPECT_EQ(bad.status, 1);
-  EXPECT_NE(bad.out.find("missing.obj"), std::string::npos);
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_NE(bad.err.find("missing.obj"), std::string::npos);
   fs::remove_all(dir);
 }
 

@@ -2,6 +2,8 @@
 // built-in, the table's verdict line, and the `--tweak -o` round trip on a
 // network with perturbed curvatures, read back and re-analysed here.
 #include <gtest/gtest.h>
+
+#include "cli_support.hpp"
 #include <nlohmann/json.hpp>
 
 #include <array>
@@ -24,24 +26,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct CliRun {
-  int status = -1;
-  std::string out;
-};
-
-/// Runs the CLI with `args`, capturing stdout (stderr goes to stdout too).
-CliRun runCli(const std::string &args) {
-  CliRun run;
-  const std::string command = std::string(CURVENET_CLI) + " " + args + " 2>&1";
-  FILE *pipe = ::popen(command.c_str(), "r");
-  if (!pipe) return run;
-  std::array<char, 4096> buffer;
-  while (size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) run.out.append(buffer.data(), n);
-  const int status = ::pclose(pipe);
-  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
-
 class CheckCli : public ::testing::Test {
 protected:
   void SetUp() override {
@@ -60,7 +44,7 @@ protected:
 
 TEST_F(CheckCli, JsonCarriesTheVertexAnalysisOfABuiltin) {
   const CliRun run = runCli("check builtin:torus-mixed --json");
-  ASSERT_EQ(run.status, 0) << run.out;
+  ASSERT_EQ(run.exitCode, 0) << run.out;
   const auto report = nlohmann::json::parse(run.out);
   // The network keys stay.
   for (const char *key : {"patches", "segments", "faces_by_sides", "vertices", "diagonal"})
@@ -87,7 +71,7 @@ TEST_F(CheckCli, JsonCarriesTheVertexAnalysisOfABuiltin) {
 
 TEST_F(CheckCli, TableEndsWithAOneLineVerdictAndListsWorstFirst) {
   const CliRun run = runCli("check builtin:saddle-nodes");
-  ASSERT_EQ(run.status, 0) << run.out;
+  ASSERT_EQ(run.exitCode, 0) << run.out;
   EXPECT_NE(run.out.find("worst first"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("verdict: G2-admissible (13 G2-admissible"), std::string::npos) << run.out;
 }
@@ -101,11 +85,11 @@ TEST_F(CheckCli, TweakWritesARepairedNetworkAtomically) {
   writeFileAtomically(input.string(), [&](std::ostream &out) { out << networkToJson(net); });
 
   const CliRun table = runCli("check " + input.string());
-  ASSERT_EQ(table.status, 0) << table.out;
+  ASSERT_EQ(table.exitCode, 0) << table.out;
   EXPECT_NE(table.out.find("verdict: needs-tweaking"), std::string::npos) << table.out;
 
   const CliRun run = runCli("check " + input.string() + " --tweak -o " + output.string() + " --json");
-  ASSERT_EQ(run.status, 0) << run.out;
+  ASSERT_EQ(run.exitCode, 0) << run.out;
   const auto report = nlohmann::json::parse(run.out);
   EXPECT_EQ(report["analysis"]["verdict"], "needs-tweaking"); // the input's
   const auto &tweak = report["tweak"];
@@ -135,11 +119,11 @@ TEST_F(CheckCli, TweakWritesARepairedNetworkAtomically) {
 }
 
 TEST_F(CheckCli, TweakNeedsAnOutputAndBadInputIsNamed) {
-  EXPECT_EQ(runCli("check builtin:pentagon --tweak").status, 2);
-  EXPECT_EQ(runCli("check builtin:pentagon -o x.json").status, 2);
+  EXPECT_EQ(runCli("check builtin:pentagon --tweak").exitCode, 2);
+  EXPECT_EQ(runCli("check builtin:pentagon -o x.json").exitCode, 2);
   const CliRun missing = runCli("check " + (dir / "missing.json").string());
-  EXPECT_EQ(missing.status, 1);
-  EXPECT_NE(missing.out.find("missing.json"), std::string::npos) << missing.out;
+  EXPECT_EQ(missing.exitCode, 1);
+  EXPECT_NE(missing.err.find("missing.json"), std::string::npos) << missing.err;
 }
 
 } // namespace
@@ -147,8 +131,8 @@ TEST_F(CheckCli, TweakNeedsAnOutputAndBadInputIsNamed) {
 TEST_F(CheckCli, ThreadCountDoesNotChangeTheReport) {
   const CliRun one = runCli("check builtin:pentagon --json --threads 1");
   const CliRun two = runCli("check builtin:pentagon --json --threads 2");
-  ASSERT_EQ(one.status, 0) << one.out;
-  ASSERT_EQ(two.status, 0) << two.out;
+  ASSERT_EQ(one.exitCode, 0) << one.out;
+  ASSERT_EQ(two.exitCode, 0) << two.out;
   EXPECT_EQ(one.out, two.out);
-  EXPECT_NE(runCli("check builtin:pentagon --threads -1").status, 0);
+  EXPECT_NE(runCli("check builtin:pentagon --threads -1").exitCode, 0);
 }

@@ -3,6 +3,8 @@
 // no output file behind.
 #include <gtest/gtest.h>
 
+#include "cli_support.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <array>
@@ -18,30 +20,10 @@
 extern char **environ;
 
 namespace fs = std::filesystem;
+using curvenet::test::CliRun;
+using curvenet::test::runCli;
 
 namespace {
-
-struct CliRun {
-  int exitCode;
-  std::string out, err;
-};
-
-/// Runs the CLI with `arguments` (already shell-quoted), capturing stdout and stderr.
-CliRun runCli(const std::string &arguments) {
-  const fs::path errFile = fs::temp_directory_path() / ("curvenet-cli-test-" + std::to_string(::getpid()) + ".err");
-  const std::string command = std::string("'") + CURVENET_CLI + "' " + arguments + " 2>'" + errFile.string() + "'";
-  CliRun run{-1, {}, {}};
-  FILE *pipe = ::popen(command.c_str(), "r");
-  if (!pipe) return run;
-  std::array<char, 4096> buffer{};
-  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) run.out.append(buffer.data(), n);
-  const int status = ::pclose(pipe);
-  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream err(errFile);
-  run.err.assign(std::istreambuf_iterator<char>(err), {});
-  fs::remove(errFile);
-  return run;
-}
 
 class Cli : public ::testing::Test {
 protected:
