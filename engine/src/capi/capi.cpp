@@ -73,12 +73,24 @@ SurfaceOptions toOptions(const curvenet_surface_options *options) {
 }
 
 /// Enum values outside their range would reach the engine as invalid enums.
+/// A C caller may store any int in these fields; reading one through the
+/// enum type is undefined in C++ when it is out of range, so the raw bits
+/// are copied into an int first.
+template <typename Enum> int rawValue(const Enum &field) {
+  static_assert(sizeof(Enum) == sizeof(int), "C enums are int-sized here");
+  int raw;
+  std::memcpy(&raw, &field, sizeof raw);
+  return raw;
+}
+
 bool validOptions(const curvenet_surface_options *o) {
-  return !o || (o->scheme >= CURVENET_GREGORY_G1 && o->scheme <= CURVENET_COONS_C0 &&
-                o->sweepline >= CURVENET_SWEEPLINE_AUTO && o->sweepline <= CURVENET_SWEEPLINE_QUINTIC_HERMITE &&
-                o->fence_normals >= CURVENET_FENCE_AUTO && o->fence_normals <= CURVENET_FENCE_REFERENCE &&
-                o->edge_curvature >= CURVENET_EDGE_CURVATURE_MASTER_SLAVE &&
-                o->edge_curvature <= CURVENET_EDGE_CURVATURE_REFERENCE);
+  if (!o) return true;
+  const int scheme = rawValue(o->scheme), sweepline = rawValue(o->sweepline);
+  const int fence = rawValue(o->fence_normals), curvature = rawValue(o->edge_curvature);
+  return scheme >= CURVENET_GREGORY_G1 && scheme <= CURVENET_COONS_C0 && sweepline >= CURVENET_SWEEPLINE_AUTO &&
+         sweepline <= CURVENET_SWEEPLINE_QUINTIC_HERMITE && fence >= CURVENET_FENCE_AUTO &&
+         fence <= CURVENET_FENCE_REFERENCE && curvature >= CURVENET_EDGE_CURVATURE_MASTER_SLAVE &&
+         curvature <= CURVENET_EDGE_CURVATURE_REFERENCE;
 }
 
 std::vector<Vec3> toPoints(const double *xyz, std::size_t count) {
