@@ -212,7 +212,7 @@ Dual RegularDomain::linearSweepSideParameter(int i, Dual u, Dual v) const {
   return -(y * a.x - x * a.y) / (y * c.x + a.y);
 }
 
-void RegularDomain::wachspressDistances(Dual u, Dual v, std::vector<Dual> &distances) const {
+void RegularDomain::wachspressDistances(Dual u, Dual v, std::span<Dual> distances) const {
   // Product form of the Wachspress weights: w_i ∏_j A_j = C_i ∏_{j ≠ i−1, i} A_j,
   // which stays finite on the sides where some A_j vanish (paper 002 Sec. 2.3).
   std::array<Dual, 16> area;
@@ -231,7 +231,7 @@ void RegularDomain::wachspressDistances(Dual u, Dual v, std::vector<Dual> &dista
     weight[i] = w;
     total += w;
   }
-  distances.resize(n_);
+  CURVENET_CHECK(distances.size() >= static_cast<std::size_t>(n_), "wachspress: output shorter than the sides");
   for (int i = 0; i < n_; ++i) distances[i] = Dual(1.0) - (weight[i] + weight[wrap(i + 1)]) / total;
 }
 

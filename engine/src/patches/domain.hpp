@@ -6,6 +6,8 @@
 // Duals so that patches get exact derivatives.
 #pragma once
 
+#include <array>
+#include <span>
 #include <vector>
 
 #include "patches/dual.hpp"
@@ -56,7 +58,25 @@ public:
 
   /// Wachspress distance parameter of paper 002 Sec. 2.3: d_i = 1 − λ_i − λ_{i+1}
   /// (λ at the two ends of side i), for all sides at once.
-  void wachspressDistances(Dual u, Dual v, std::vector<Dual> &distances) const;
+  /// `distances` holds at least sides() entries.
+  void wachspressDistances(Dual u, Dual v, std::span<Dual> distances) const;
+
+  /// The corner products of the blends in product form (paper 000 eq. 18,
+  /// paper 002): products[i] = D_{i,i−1} = ∏_{j ∉ {i−1, i}} powered[j], where
+  /// powered[j] is side j's distance to the blend exponent. Returns their sum.
+  /// Finite on the sides, where the reciprocal form divides by zero.
+  template <typename T, std::size_t N>
+  T cornerProducts(const std::array<T, N> &powered, std::array<T, N> &products) const {
+    T total = 0.0;
+    for (int i = 0; i < n_; ++i) {
+      T product = 1.0;
+      for (int j = 0; j < n_; ++j)
+        if (j != i && j != wrap(i - 1)) product *= powered[j];
+      products[i] = product;
+      total += product;
+    }
+    return total;
+  }
 
   /// Side i's frame: maps a domain point to (x, y) where side i is (0,0)→(1,0)
   /// and the domain lies at y > 0.

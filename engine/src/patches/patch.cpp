@@ -141,14 +141,7 @@ DualVec3 Patch::gregory(Dual u, Dual v) const {
   // B_{i,i−1} = ∏_{j∉{i,i−1}} Δ_j² / Σ_k ∏_{j∉{k,k−1}} Δ_j².
   std::array<Dual, kMaxSides> squared, blend;
   for (int i = 0; i < n; ++i) squared[i] = distance[i] * distance[i];
-  Dual total = 0.0;
-  for (int i = 0; i < n; ++i) {
-    Dual product = 1.0;
-    for (int j = 0; j < n; ++j)
-      if (j != i && j != domain_.wrap(i - 1)) product *= squared[j];
-    blend[i] = product;
-    total += product;
-  }
+  const Dual total = domain_.cornerProducts(squared, blend);
   DualVec3 result{};
   for (int i = 0; i < n; ++i) {
     const Dual b = blend[i] / total;
@@ -185,14 +178,7 @@ Dual2Vec3 Patch::evaluateSecondOrder(double uValue, double vValue) const {
     jet[i] = side == 0.0 ? parabolic_[i].start() : side == 1.0 ? parabolic_[i].end() : parabolic_[i].secondOrder(side);
   }
   std::array<Dual2, kMaxSides> blend;
-  Dual2 total = 0.0;
-  for (int i = 0; i < n; ++i) {
-    Dual2 product = 1.0;
-    for (int j = 0; j < n; ++j)
-      if (j != i && j != domain_.wrap(i - 1)) product *= cubed[j];
-    blend[i] = product;
-    total += product;
-  }
+  const Dual2 total = domain_.cornerProducts(cubed, blend);
   Dual2Vec3 result{};
   for (int i = 0; i < n; ++i) {
     const Dual2 b = blend[i] / total;
@@ -223,14 +209,7 @@ DualVec3 Patch::gregoryG2(Dual u, Dual v) const {
   // Corner blends in product form with m = 3 (eq. 18): their first and second
   // derivatives vanish on every side but the two at the corner.
   std::array<Dual, kMaxSides> blend;
-  Dual total = 0.0;
-  for (int i = 0; i < n; ++i) {
-    Dual product = 1.0;
-    for (int j = 0; j < n; ++j)
-      if (j != i && j != domain_.wrap(i - 1)) product *= cubed[j];
-    blend[i] = product;
-    total += product;
-  }
+  const Dual total = domain_.cornerProducts(cubed, blend);
   DualVec3 result{};
   for (int i = 0; i < n; ++i) {
     const Dual b = blend[i] / total;
@@ -250,25 +229,13 @@ DualVec3 Patch::gregoryG2(Dual u, Dual v) const {
 DualVec3 Patch::compositeRibbon(Dual u, Dual v) const {
   const int n = domain_.sides();
   std::array<Dual, kMaxSides> d, s;
-  {
-    std::vector<Dual> wachspress;
-    wachspress.reserve(kMaxSides);
-    domain_.wachspressDistances(u, v, wachspress);
-    for (int i = 0; i < n; ++i) d[i] = wachspress[i];
-  }
+  domain_.wachspressDistances(u, v, d); // into a stack array: no allocation per point
   for (int i = 0; i < n; ++i) s[i] = domain_.linearSweepSideParameter(i, u, v);
 
   // CR blends B_i = (D_{i,i−1} + D_{i,i+1}) / Σ_j D_{j,j−1}, D = ∏ d_j² over the others.
   std::array<Dual, kMaxSides> squared, cornerProduct, blend;
   for (int i = 0; i < n; ++i) squared[i] = d[i] * d[i];
-  Dual total = 0.0;
-  for (int i = 0; i < n; ++i) { // cornerProduct[i] = D_{i,i−1}
-    Dual product = 1.0;
-    for (int j = 0; j < n; ++j)
-      if (j != i && j != domain_.wrap(i - 1)) product *= squared[j];
-    cornerProduct[i] = product;
-    total += product;
-  }
+  const Dual total = domain_.cornerProducts(squared, cornerProduct); // cornerProduct[i] = D_{i,i−1}
   for (int i = 0; i < n; ++i) blend[i] = (cornerProduct[i] + cornerProduct[domain_.wrap(i + 1)]) / total;
   return compositeRibbonFrom(s.data(), d.data(), blend.data());
 }

@@ -115,7 +115,7 @@ EvaluationPlan::EvaluationPlan(const PlanKey &key) : key_(key) {
       }
       kernels::hermiteSweepRoots(m, frame, x.data(), y.data(), roots.data(), dist.data());
     }
-    std::vector<Dual> wachspress;
+    std::array<Dual, 16> wachspress;
     for (std::size_t k = range.begin(); k < range.end(); ++k) {
       const Dual u = Dual::u(samples_[k].x), v = Dual::vCoord(samples_[k].y);
       std::array<Dual, 8> power;
