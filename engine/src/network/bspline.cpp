@@ -84,6 +84,19 @@ void basisDerivatives(int span, double t, int p, int n, std::span<const double> 
 
 // Span index for knot vector U of a clamped curve with `count` control points:
 // U[span] <= t < U[span+1], the last non-empty span for t at the domain end.
+/// Derivatives of C = A / w from the homogeneous ones, by the Leibniz rule on
+/// A = w·C (Piegl–Tiller eq. 4.8): C^(k) = (A^(k) − Σ_{i=1..k} binom(k,i) w^(i) C^(k−i)) / w.
+std::array<Vec3, 4> rationalDerivatives(const std::array<Vec3, 4> &A, const double *W) {
+  static constexpr int binom[4][4] = {{1, 0, 0, 0}, {1, 1, 0, 0}, {1, 2, 1, 0}, {1, 3, 3, 1}};
+  std::array<Vec3, 4> C{};
+  for (int k = 0; k <= 3; ++k) {
+    Vec3 v = A[k];
+    for (int i = 1; i <= k; ++i) v -= (binom[k][i] * W[i]) * C[k - i];
+    C[k] = v / W[0];
+  }
+  return C;
+}
+
 int spanOf(std::span<const double> U, int p, int count, double t) {
   // NaN compares false with everything and would walk past the last span:
   // keep it in range (the caller's result is NaN anyway).
@@ -289,15 +302,7 @@ std::array<Vec3, 4> BSplineCurve::fastDerivatives(double t, int span) const {
   for (int k = 0; k < 4; ++k) A[k] = Vec3{jet[k][0], jet[k][1], jet[k][2]} * scale[k];
   if (!rational) return A;
   const double W[4] = {jet[0][3], jet[1][3] * scale[1], jet[2][3] * scale[2], jet[3][3] * scale[3]};
-  // C^(k) = (A^(k) − Σ_{i=1..k} binom(k,i) w^(i) C^(k−i)) / w, as in derivativesReference.
-  static constexpr int binom[4][4] = {{1, 0, 0, 0}, {1, 1, 0, 0}, {1, 2, 1, 0}, {1, 3, 3, 1}};
-  std::array<Vec3, 4> C{};
-  for (int k = 0; k <= 3; ++k) {
-    Vec3 v = A[k];
-    for (int i = 1; i <= k; ++i) v -= (binom[k][i] * W[i]) * C[k - i];
-    C[k] = v / W[0];
-  }
-  return C;
+  return rationalDerivatives(A, W);
 }
 
 BSplineCurve BSplineCurve::bezier(std::vector<Vec3> controlPoints) {
@@ -374,15 +379,7 @@ std::array<Vec3, 4> BSplineCurve::derivativesReference(double t) const {
       A[k] += (N[k][j] * wi) * points_[i];
       W[k] += N[k][j] * wi;
     }
-  // C^(k) = (A^(k) − Σ_{i=1..k} binom(k,i) w^(i) C^(k−i)) / w (Leibniz rule on A = w·C, eq. 4.8).
-  static constexpr int binom[4][4] = {{1, 0, 0, 0}, {1, 1, 0, 0}, {1, 2, 1, 0}, {1, 3, 3, 1}};
-  std::array<Vec3, 4> C{};
-  for (int k = 0; k <= 3; ++k) {
-    Vec3 v = A[k];
-    for (int i = 1; i <= k; ++i) v -= (binom[k][i] * W[i]) * C[k - i];
-    C[k] = v / W[0];
-  }
-  return C;
+  return rationalDerivatives(A, W.data());
 }
 
 BSplineCurve BSplineCurve::reversed() const {
