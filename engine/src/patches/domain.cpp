@@ -44,6 +44,17 @@ Vec2 inFrame(const Vec2 &e, const Vec2 &d) {
 }
 } // namespace
 
+namespace {
+/// The Hermite weight of eq. 20 and its first two derivatives: cubic
+/// H(s) = 2s³ − 3s² + 1, or the quintic 1 − 10s³ + 15s⁴ − 6s⁵ of the footnote.
+std::array<double, 3> hermiteWeight(double s, bool quintic) {
+  if (quintic)
+    return {1 - s * s * s * (10 - 15 * s + 6 * s * s), -30 * s * s * (1 - s) * (1 - s),
+            -60 * s * (1 - s) * (1 - 2 * s)};
+  return {2 * s * s * s - 3 * s * s + 1, 6 * s * s - 6 * s, 12 * s - 6};
+}
+} // namespace
+
 Dual RegularDomain::radialSideParameter(int i, Dual u, Dual v) const {
   Dual x, y;
   sideFrame(i, u, v, x, y);
@@ -68,13 +79,7 @@ RegularDomain::SweepParameters RegularDomain::hermiteSweep(int i, Dual u, Dual v
   const Vec2 e = corner(i + 1) - corner(i);
   const Vec2 a = inFrame(e, corner(i - 1) - corner(i));
   const Vec2 b = inFrame(e, corner(i + 2) - corner(i + 1));
-  // H(s) and H'(s): cubic 2s³ − 3s² + 1, or quintic 1 − 10s³ + 15s⁴ − 6s⁵.
-  auto H = [quintic](double s) -> std::array<double, 3> {
-    if (quintic)
-      return {1 - s * s * s * (10 - 15 * s + 6 * s * s), -30 * s * s * (1 - s) * (1 - s),
-              -60 * s * (1 - s) * (1 - 2 * s)};
-    return {2 * s * s * s - 3 * s * s + 1, 6 * s * s - 6 * s, 12 * s - 6};
-  };
+  auto H = [quintic](double s) { return hermiteWeight(s, quintic); };
   // w(s) = a H(s) + b H(1 − s) and its derivative.
   auto w = [&](double s, Vec2 &value, Vec2 &slope) {
     const auto h0 = H(s), h1 = H(1 - s);
@@ -140,10 +145,7 @@ RegularDomain::SweepParameters RegularDomain::hermiteSweepFromRoot(int i, Dual u
   const Vec2 e = corner(i + 1) - corner(i);
   const Vec2 a = inFrame(e, corner(i - 1) - corner(i));
   const Vec2 b = inFrame(e, corner(i + 2) - corner(i + 1));
-  auto H = [quintic](double s) -> std::array<double, 2> {
-    if (quintic) return {1 - s * s * s * (10 - 15 * s + 6 * s * s), -30 * s * s * (1 - s) * (1 - s)};
-    return {2 * s * s * s - 3 * s * s + 1, 6 * s * s - 6 * s};
-  };
+  auto H = [quintic](double s) { return hermiteWeight(s, quintic); };
   const double px = x.v, py = y.v;
   // Implicit differentiation of F(s; x, y) = 0.
   const auto h0 = H(best), h1 = H(1 - best);
