@@ -251,3 +251,136 @@ TEST(Kernels, SweepSolverMatchesEigenvaluesScalarSolverAndAcrossWidths) {
 }
 
 } // namespace
+
+namespace {
+
+/// Gregory positions by the formula with plain divisions (no batch inversion).
+std::array<double, 3> gregoryFormula(const ck::GregorySamples &in, const ck::GregoryCorner *corners, size_t k) {
+  std::array<double, 3> out{};
+  const int n = in.sides;
+  for (int i = 0; i < n; ++i) {
+    const int prev = (i + n - 1) % n;
+    const double s = in.s[i][k], t = 1 - in.s[prev][k], b = in.blend[i][k];
+    const double(*v)[3] = corners[i].v;
+    auto w = [](double x, double y) { return x + y == 0 ? 0.5 : x / (x + y); };
+    for (int c = 0; c < 3; ++c) {
+      double left = in.P[prev][c][k] + s * in.T[prev][c][k], right = in.P[i][c][k] + t * in.T[i][c][k];
+      double q = v[0][c];
+      if (in.parabolic) {
+        left += 0.5 * s * s * in.C[prev][c][k], right += 0.5 * t * t * in.C[i][c][k];
+        const double sp[4] = {1, s, s * s, s * s * s}, tp[4] = {1, t, t * t, t * t * t};
+        int slot = 1;
+        for (int p = 0; p <= 2; ++p)
+          for (int r = 0; r <= 2; ++r) {
+            if (!p && !r) continue;
+            const double f = sp[p] * tp[r] * (p == 2 ? 0.5 : 1) * (r == 2 ? 0.5 : 1), wa = w(sp[3 - p], tp[3 - r]);
+            q += f * (wa * v[slot][c] + (1 - wa) * v[slot + 1][c]);
+            slot += 2;
+          }
+      } else {
+        const double w10 = w(s, t * t), w01 = w(s * s, t), w11 = w(s, t);
+        q += s * (w10 * v[1][c] + (1 - w10) * v[2][c]) + t * (w01 * v[3][c] + (1 - w01) * v[4][c]) +
+             s * t * (w11 * v[5][c] + (1 - w11) * v[6][c]);
+      }
+      out[c] += b * (left + right - q);
+    }
+  }
+  return out;
+}
+
+} // namespace
+
+TEST(Kernels, GregoryPositionsAgreeAcrossWidthsAndWithTheFormula) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (bool parabolic : {false, true})
+    for (int n : {3, 5, 8}) {
+      Soa s(n, kCount), blend(n, kCount), P(3 * n, kCount, &rng), T(3 * n, kCount, &rng), C(3 * n, kCount, &rng);
+      for (double &x : s.data) x = unit(rng);
+      for (double &x : blend.data) x = unit(rng);
+      // A sample at corner 1 (s_1 = 0, s_0 = 1: the rational weights' limit)
+      // and one very near it (the batch inversion's underflow fallback).
+      s[1][5] = 0, s[0][5] = 1, s[1][6] = 1e-90, s[0][6] = 1 - 1e-16;
+      ck::GregorySamples in;
+      in.sides = n, in.parabolic = parabolic;
+      for (int i = 0; i < n; ++i) {
+        in.s[i] = s[i], in.blend[i] = blend[i];
+        for (int c = 0; c < 3; ++c) in.P[i][c] = P[3 * i + c], in.T[i][c] = T[3 * i + c], in.C[i][c] = C[3 * i + c];
+      }
+      std::vector<ck::GregoryCorner> corners(n);
+      std::uniform_real_distribution<double> u(-2, 2);
+      for (auto &corner : corners)
+        for (auto &v : corner.v)
+          for (double &x : v) x = u(rng);
+      Soa reference(3, kCount);
+      double *refOut[3] = {reference[0], reference[1], reference[2]};
+      ck::gregoryPositions(kCount, in, corners.data(), refOut, ck::kScalarReference);
+      std::vector<double> formula(3 * kCount);
+      for (size_t k = 0; k < kCount; ++k) {
+        const auto p = gregoryFormula(in, corners.data(), k);
+        for (int c = 0; c < 3; ++c) formula[c * kCount + k] = p[c];
+      }
+      EXPECT_LE(relativeDifference(reference.data, formula), 1e-12) << "n=" << n << (parabolic ? " G2" : " G1");
+      for (const auto &w : ck::availableWidths()) {
+        Soa out(3, kCount);
+        double *o[3] = {out[0], out[1], out[2]};
+        ck::gregoryPositions(kCount, in, corners.data(), o, w.id);
+        EXPECT_LE(relativeDifference(out.data, reference.data), 1e-12) << w.name << " n=" << n;
+      }
+    }
+}
+
+TEST(Kernels, TableEvaluationAgreesAcrossWidthsAndWithHorner) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-2, 2), unit(0, 1);
+  for (int dims : {6, 9}) {
+    const int padded = (dims + 3) / 4 * 4;
+    // Uneven intervals over [0, 1], a coarse grid: the forward search moves.
+    std::vector<double> edges{0};
+    while (edges.back() < 1) edges.push_back(std::min(1.0, edges.back() + 0.002 + 0.05 * unit(rng)));
+    const size_t m = edges.size() - 1;
+    std::vector<double> starts(edges.begin(), edges.end() - 1), ends(edges.begin() + 1, edges.end()), inverse(m);
+    for (size_t j = 0; j < m; ++j) inverse[j] = 1 / (ends[j] - starts[j]);
+    std::vector<double> coefficients(m * 6 * padded, 0.0);
+    for (size_t j = 0; j < m; ++j)
+      for (int r = 0; r < 6; ++r)
+        for (int d = 0; d < dims; ++d) coefficients[(j * 6 + r) * padded + d] = u(rng);
+    const size_t cells = 64;
+    std::vector<std::uint32_t> first(cells);
+    int steps = 0;
+    for (size_t c = 0, j = 0; c < cells; ++c) {
+      while (j + 1 < m && ends[j] < double(c) / cells) ++j;
+      first[c] = static_cast<std::uint32_t>(j);
+      size_t last = j;
+      while (last + 1 < m && ends[last] < double(c + 1) / cells) ++last;
+      steps = std::max(steps, int(last - j));
+    }
+    ck::PolynomialTable table;
+    table.dims = dims, table.paddedDims = padded, table.steps = steps, table.intervals = m, table.cells = cells;
+    table.starts = starts.data(), table.ends = ends.data(), table.inverseWidths = inverse.data();
+    table.coefficients = coefficients.data(), table.cellFirst = first.data();
+    std::vector<double> s(kCount);
+    for (double &x : s) x = unit(rng);
+    s[0] = 0, s[1] = 1, s[2] = edges[3]; // the ends, and a break (the interval to its left)
+    std::vector<double> horner(dims * kCount), hornerSlope(dims * kCount);
+    for (size_t k = 0; k < kCount; ++k) {
+      size_t j = 0;
+      while (j + 1 < m && ends[j] < s[k]) ++j;
+      const double t = (s[k] - starts[j]) * inverse[j];
+      for (int d = 0; d < dims; ++d) {
+        double v = 0, dv = 0;
+        for (int r = 5; r >= 0; --r) v = v * t + coefficients[(j * 6 + r) * padded + d];
+        for (int r = 1; r <= 5; ++r) dv += r * coefficients[(j * 6 + r) * padded + d] * std::pow(t, r - 1);
+        horner[d * kCount + k] = v, hornerSlope[d * kCount + k] = dv * inverse[j];
+      }
+    }
+    for (const auto &w : ck::availableWidths()) {
+      Soa values(dims, kCount), slopes(dims, kCount);
+      std::vector<double *> v(dims), sl(dims);
+      for (int d = 0; d < dims; ++d) v[d] = values[d], sl[d] = slopes[d];
+      ck::evaluateTable(kCount, table, s.data(), v.data(), sl.data(), w.id);
+      EXPECT_LE(relativeDifference(values.data, horner), 1e-12) << w.name << " dims " << dims;
+      EXPECT_LE(relativeDifference(slopes.data, hornerSlope), 1e-12) << w.name << " dims " << dims;
+    }
+  }
+}

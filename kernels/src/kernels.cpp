@@ -31,6 +31,18 @@ struct AccumulateArgs {
   ck::DualVec3Span out;
 };
 
+struct TableArgs {
+  const ck::PolynomialTable *table;
+  const double *s;
+  double *const *values, *const *slopes;
+};
+
+struct GregoryArgs {
+  const ck::GregorySamples *in;
+  const ck::GregoryCorner *corners;
+  double *const *out;
+};
+
 struct SweepArgs {
   ck::SweepFrame frame;
   const double *x, *y;
@@ -113,6 +125,182 @@ void Accumulate(std::size_t count, const AccumulateArgs &args, bool reference) {
   auto body = [&](auto d, std::size_t k) { accumulateBody(d, k, args); };
   if (reference) forEachVector(hn::CappedTag<double, 1>(), count, body);
   else forEachVector(hn::ScalableTag<double>(), count, body);
+}
+
+/// The interval of s (see PolynomialTable): its grid cell's first, then at
+/// most `steps` forward moves, branch-free (the grid is fine enough).
+HWY_INLINE std::size_t tableInterval(const ck::PolynomialTable &tb, double s) {
+  const double scaled = s * static_cast<double>(tb.cells);
+  std::size_t cell = scaled <= 0 ? 0 : static_cast<std::size_t>(scaled);
+  cell = cell < tb.cells ? cell : tb.cells - 1;
+  std::size_t j = tb.cellFirst[cell];
+  for (int q = 0; q < tb.steps; ++q) j += (j + 1 < tb.intervals) & (tb.ends[j] < s);
+  return j;
+}
+
+/// One sample's coordinates x .. x + lanes − 1 (value, and d/ds when
+/// slopes are wanted) over D, whose lanes run across the coordinates.
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE void tablePolynomial(D d, const ck::PolynomialTable &tb, std::size_t j, double s, std::size_t x,
+                                bool slopes, V &value, V &slope) {
+  const std::size_t row = static_cast<std::size_t>(tb.paddedDims);
+  const double *c = tb.coefficients + j * 6 * row + x;
+  const V t = hn::Set(d, (s - tb.starts[j]) * tb.inverseWidths[j]);
+  const V c0 = hn::LoadU(d, c), c1 = hn::LoadU(d, c + row), c2 = hn::LoadU(d, c + 2 * row);
+  const V c3 = hn::LoadU(d, c + 3 * row), c4 = hn::LoadU(d, c + 4 * row), c5 = hn::LoadU(d, c + 5 * row);
+  value = hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(c5, t, c4), t, c3), t, c2), t, c1), t, c0);
+  if (slopes) {
+    const V dv = hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::Mul(hn::Set(d, 5.0), c5), t, hn::Mul(hn::Set(d, 4.0), c4)),
+                                                  t, hn::Mul(hn::Set(d, 3.0), c3)),
+                                       t, hn::Add(c2, c2)),
+                            t, c1);
+    slope = hn::Mul(dv, hn::Set(d, tb.inverseWidths[j]));
+  }
+}
+
+/// RibbonTable evaluation over D, a tag whose lanes run across the
+/// coordinates of one sample (rows are padded to a multiple of 4). With
+/// four lanes, four samples at a time are transposed in registers so that
+/// the structure-of-arrays outputs are written as whole vectors.
+template <class D> HWY_INLINE void evaluateTableWith(D d, std::size_t count, const TableArgs &a) {
+  using V = hn::Vec<D>;
+  const ck::PolynomialTable &tb = *a.table;
+  const std::size_t lanes = hn::Lanes(d), dims = static_cast<std::size_t>(tb.dims);
+  const bool slopes = a.slopes != nullptr;
+  std::size_t k = 0;
+#if HWY_TARGET != HWY_SCALAR
+  if constexpr (hn::MaxLanes(D()) == 4) {
+    if (lanes == 4) {
+      auto transposeStore = [&](V (&r)[4], double *const *out, std::size_t x) {
+        const V t0 = hn::InterleaveLower(d, r[0], r[1]), t1 = hn::InterleaveUpper(d, r[0], r[1]);
+        const V t2 = hn::InterleaveLower(d, r[2], r[3]), t3 = hn::InterleaveUpper(d, r[2], r[3]);
+        const V col[4] = {hn::ConcatLowerLower(d, t2, t0), hn::ConcatLowerLower(d, t3, t1),
+                          hn::ConcatUpperUpper(d, t2, t0), hn::ConcatUpperUpper(d, t3, t1)};
+        for (std::size_t c = 0; c < 4 && x + c < dims; ++c) hn::StoreU(col[c], d, out[x + c] + k);
+      };
+      for (; k + 4 <= count; k += 4) {
+        std::size_t j[4];
+        for (int q = 0; q < 4; ++q) j[q] = tableInterval(tb, a.s[k + q]);
+        for (std::size_t x = 0; x < dims; x += 4) {
+          V value[4], slope[4];
+          for (int q = 0; q < 4; ++q) tablePolynomial(d, tb, j[q], a.s[k + q], x, slopes, value[q], slope[q]);
+          transposeStore(value, a.values, x);
+          if (slopes) transposeStore(slope, a.slopes, x);
+        }
+      }
+    }
+  }
+#endif
+  HWY_ALIGN double value[16], slope[16];
+  for (; k < count; ++k) {
+    const std::size_t j = tableInterval(tb, a.s[k]);
+    for (std::size_t x = 0; x < dims; x += lanes) {
+      V v, sl;
+      tablePolynomial(d, tb, j, a.s[k], x, slopes, v, sl);
+      hn::Store(v, d, value + x);
+      if (slopes) hn::Store(sl, d, slope + x);
+    }
+    for (std::size_t x = 0; x < dims; ++x) a.values[x][k] = value[x];
+    if (slopes)
+      for (std::size_t x = 0; x < dims; ++x) a.slopes[x][k] = slope[x];
+  }
+}
+
+void EvaluateTable(std::size_t count, const TableArgs &args, bool reference) {
+  if (reference) evaluateTableWith(hn::CappedTag<double, 1>(), count, args);
+  else evaluateTableWith(hn::CappedTag<double, 4>(), count, args);
+}
+
+/// In-place reciprocals of m positive values with one division (batch
+/// inversion: prefix products, one reciprocal, back substitution). Lanes
+/// whose product underflows take m divisions instead.
+template <int M, class D, class V> HWY_INLINE void reciprocals(D d, V (&x)[M]) {
+  V prefix[M];
+  prefix[0] = x[0];
+  for (int j = 1; j < M; ++j) prefix[j] = hn::Mul(prefix[j - 1], x[j]);
+  if (HWY_UNLIKELY(!hn::AllFalse(d, hn::Not(hn::Gt(prefix[M - 1], hn::Set(d, 1e-250)))))) {
+    // Near a corner (or at it, where x = 0 and the caller's factor vanishes).
+    const V tiny = hn::Set(d, 1e-300), one = hn::Set(d, 1.0);
+    for (int j = 0; j < M; ++j) x[j] = hn::Div(one, hn::Max(x[j], tiny));
+    return;
+  }
+  V inverse = hn::Div(hn::Set(d, 1.0), prefix[M - 1]);
+  for (int j = M - 1; j > 0; --j) {
+    const V mine = hn::Mul(inverse, prefix[j - 1]);
+    inverse = hn::Mul(inverse, x[j]);
+    x[j] = mine;
+  }
+  x[0] = inverse;
+}
+
+template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t k, const GregoryArgs &a) {
+  using V = hn::Vec<D>;
+  const ck::GregorySamples &in = *a.in;
+  const int n = in.sides;
+  const V one = hn::Set(d, 1.0), half = hn::Set(d, 0.5);
+  V acc[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
+  for (int i = 0; i < n; ++i) {
+    const int prev = i == 0 ? n - 1 : i - 1;
+    const V s = hn::LoadU(d, in.s[i] + k), t = hn::Sub(one, hn::LoadU(d, in.s[prev] + k));
+    const V blend = hn::LoadU(d, in.blend[i] + k);
+    // R_{i−1}(s_{i−1}, s) + R_i(s, t).
+    V term[3];
+    const V s2 = hn::Mul(s, s), t2 = hn::Mul(t, t);
+    const V hs2 = hn::Mul(half, s2), ht2 = hn::Mul(half, t2);
+    for (int c = 0; c < 3; ++c) {
+      V left = hn::MulAdd(s, hn::LoadU(d, in.T[prev][c] + k), hn::LoadU(d, in.P[prev][c] + k));
+      V right = hn::MulAdd(t, hn::LoadU(d, in.T[i][c] + k), hn::LoadU(d, in.P[i][c] + k));
+      if constexpr (Parabolic) {
+        left = hn::MulAdd(hs2, hn::LoadU(d, in.C[prev][c] + k), left);
+        right = hn::MulAdd(ht2, hn::LoadU(d, in.C[i][c] + k), right);
+      }
+      term[c] = hn::Sub(hn::Add(left, right), hn::Set(d, a.corners[i].v[0][c]));
+    }
+    // − Q: each rational term contributes −f (wa a + wb b), wa = x / (x + y), wb = 1 − wa.
+    const double(*vec)[3] = a.corners[i].v;
+    auto subtract = [&](V f, V wa, int slot) {
+      const V fa = hn::Mul(f, wa), fb = hn::Sub(f, fa);
+      for (int c = 0; c < 3; ++c)
+        term[c] = hn::NegMulAdd(fa, hn::Set(d, vec[slot][c]), hn::NegMulAdd(fb, hn::Set(d, vec[slot + 1][c]), term[c]));
+    };
+    if constexpr (Parabolic) {
+      const V s3 = hn::Mul(s2, s), t3 = hn::Mul(t2, t);
+      const V sp[4] = {one, s, s2, s3}, tp[4] = {one, t, t2, t3};
+      V den[8];
+      int j = 0;
+      for (int p = 0; p <= 2; ++p)
+        for (int r = 0; r <= 2; ++r)
+          if (p || r) den[j++] = hn::Add(sp[3 - p], tp[3 - r]);
+      reciprocals(d, den);
+      j = 0;
+      int slot = 1;
+      for (int p = 0; p <= 2; ++p)
+        for (int r = 0; r <= 2; ++r) {
+          if (!p && !r) continue;
+          const double factorial = (p == 2 ? 0.5 : 1.0) * (r == 2 ? 0.5 : 1.0);
+          const V f = hn::Mul(hn::Set(d, factorial), hn::Mul(sp[p], tp[r]));
+          subtract(f, hn::Mul(sp[3 - p], den[j++]), slot);
+          slot += 2;
+        }
+    } else {
+      V den[3] = {hn::Add(s, t2), hn::Add(s2, t), hn::Add(s, t)};
+      reciprocals(d, den);
+      subtract(s, hn::Mul(s, den[0]), 1);
+      subtract(t, hn::Mul(s2, den[1]), 3);
+      subtract(hn::Mul(s, t), hn::Mul(s, den[2]), 5);
+    }
+    for (int c = 0; c < 3; ++c) acc[c] = hn::MulAdd(blend, term[c], acc[c]);
+  }
+  for (int c = 0; c < 3; ++c) hn::StoreU(acc[c], d, a.out[c] + k);
+}
+
+void GregoryPositions(std::size_t count, const GregoryArgs &args, bool reference) {
+  auto run = [&](auto tag) {
+    if (args.in->parabolic) forEachVector(tag, count, [&](auto d, std::size_t k) { gregoryBody<true>(d, k, args); });
+    else forEachVector(tag, count, [&](auto d, std::size_t k) { gregoryBody<false>(d, k, args); });
+  };
+  if (reference) run(hn::CappedTag<double, 1>());
+  else run(hn::ScalableTag<double>());
 }
 
 /// Polynomial p(s) = Σ c_j s^j of degree ≤ 4, Horner.
@@ -241,6 +429,8 @@ namespace kernels_impl {
 HWY_EXPORT(RibbonPoints);
 HWY_EXPORT(Accumulate);
 HWY_EXPORT(SweepRoots);
+HWY_EXPORT(GregoryPositions);
+HWY_EXPORT(EvaluateTable);
 HWY_EXPORT(Lanes);
 
 namespace {
@@ -302,6 +492,20 @@ void accumulateConstant(std::size_t count, DualSpan w, const double c[3], DualVe
   const std::size_t index = tableIndex(width, reference);
   HWY_DISPATCH_TABLE(Accumulate)[index](count, {w, {{nullptr, nullptr, nullptr}, {}, {}}, {c[0], c[1], c[2]}, out},
                                         reference);
+}
+
+void evaluateTable(std::size_t count, const PolynomialTable &table, const double *s, double *const *values,
+                   double *const *slopes, std::int64_t width) {
+  bool reference;
+  const std::size_t index = tableIndex(width, reference);
+  HWY_DISPATCH_TABLE(EvaluateTable)[index](count, {&table, s, values, slopes}, reference);
+}
+
+void gregoryPositions(std::size_t count, const GregorySamples &samples, const GregoryCorner *corners,
+                      double *const out[3], std::int64_t width) {
+  bool reference;
+  const std::size_t index = tableIndex(width, reference);
+  HWY_DISPATCH_TABLE(GregoryPositions)[index](count, {&samples, corners, out}, reference);
 }
 
 void hermiteSweepRoots(std::size_t count, const SweepFrame &frame, const double *x, const double *y, double *s,

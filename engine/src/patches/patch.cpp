@@ -95,7 +95,7 @@ DualVec3 gregoryCorrection(const CornerData &c, Dual s, Dual t, Dual gs, Dual gt
 }
 
 Patch::Patch(std::vector<LinearRibbon> ribbons, const SurfaceOptions &options, std::vector<ParabolicRibbon> parabolic)
-    : domain_(static_cast<int>(ribbons.size())), ribbons_(std::move(ribbons)), parabolic_(std::move(parabolic)),
+    : tables_(std::make_shared<TableCache>()), domain_(static_cast<int>(ribbons.size())), ribbons_(std::move(ribbons)), parabolic_(std::move(parabolic)),
       options_(options) {
   CURVENET_CHECK(ribbons_.size() >= 3 && ribbons_.size() <= kMaxSides);
   if (options_.sweepline == Sweepline::Auto)

@@ -3,16 +3,29 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
+#include <mutex>
 #include <vector>
 
 #include "curvenet/surface.hpp"
 #include "patches/domain.hpp"
+#include "curvenet/kernels/kernels.hpp"
+#include "ribbons/ribbon_table.hpp"
 #include "ribbons/ribbons.hpp"
 
 namespace curvenet {
 inline namespace v1 {
 
 class EvaluationPlan;
+
+/// What the fast evaluation paths of a Gregory patch need besides a plan:
+/// each side's ribbon as a RibbonTable (P, T; G²: also C) and each corner's
+/// correction-patch vectors.
+struct PatchTables {
+  std::vector<RibbonTable> sides;
+  std::vector<kernels::GregoryCorner> corners;
+  std::size_t memory() const;
+};
 
 class Patch {
 public:
@@ -36,7 +49,21 @@ public:
   /// correction sums); composite-ribbon: per sample from the plan's
   /// parameters. Equals evaluate() at those samples to ~1e-12 relative.
   /// Thread-safe; scratch is per thread.
+  /// At plan resolutions from kTableResolution on, the ribbons come from
+  /// tables() instead of exact evaluation (agreeing to ~1e-14 of their size).
   void evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::size_t count, DualVec3 *out) const;
+  /// Positions alone of the same samples into out[c][k] (c = x, y, z):
+  /// Gregory schemes through tables() and one SIMD kernel pass
+  /// (kernels::gregoryPositions); composite-ribbon through evaluatePlanned.
+  /// Thread-safe.
+  void evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t first, std::size_t count,
+                                double *const out[3]) const;
+  /// Plan resolution from which evaluatePlanned uses the tables: below it
+  /// a face has too few samples to repay building them.
+  static constexpr int kTableResolution = 32;
+  /// Gregory schemes: the ribbon tables and corner vectors, built on first
+  /// use (thread-safe, once per patch; copies of a patch share them).
+  const PatchTables &tables() const;
   const SurfaceOptions &options() const { return options_; }
 
 private:
@@ -45,11 +72,20 @@ private:
   /// The CR formula from the side parameters, distances and blends of all sides.
   DualVec3 compositeRibbonFrom(const Dual *s, const Dual *d, const Dual *blends) const;
   DualVec3 gregoryG2(Dual u, Dual v) const;
+  /// Corner i's correction-patch vectors (kernels::GregoryCorner order).
+  kernels::GregoryCorner cornerVectors(int i) const;
 
+  struct TableCache;
+  std::shared_ptr<TableCache> tables_;
   RegularDomain domain_;
   std::vector<LinearRibbon> ribbons_;
   std::vector<ParabolicRibbon> parabolic_;
   SurfaceOptions options_;
+};
+
+struct Patch::TableCache {
+  std::once_flag once;
+  PatchTables tables;
 };
 
 /// Corner data of two ribbons meeting at a corner, in the corner's local

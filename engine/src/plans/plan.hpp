@@ -49,6 +49,11 @@ public:
     return perSide_ ? s_[static_cast<std::size_t>(i) * size() + k] : turn(i, s_[rotated(i, k)]);
   }
   Dual distance(int i, std::size_t k) const { return turn(i, d_[rotated(i, k)]); }
+  /// Values alone (no gradient turn), for position-only evaluation.
+  double sideValue(int i, std::size_t k) const {
+    return perSide_ ? s_[static_cast<std::size_t>(i) * size() + k].v : s_[rotated(i, k)].v;
+  }
+  double blendValue(int i, std::size_t k) const { return b_[rotated(i, k)].v; }
   /// True when every side's parameters are stored (see the constructor).
   bool perSide() const { return perSide_; }
   /// Gregory: corner i's normalized blend B_{i,i−1}; composite-ribbon: the

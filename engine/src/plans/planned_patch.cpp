@@ -94,6 +94,124 @@ constexpr int kMaxCornerVectors = 17; // a00 and the eight (a, b) pairs of eq. 2
 
 } // namespace
 
+kernels::GregoryCorner Patch::cornerVectors(int i) const {
+  const int prev = domain_.wrap(i - 1);
+  std::array<Vec3, kMaxCornerVectors> vectors{};
+  if (options_.scheme == Scheme::GregoryG2) {
+    const SideEndData &end = parabolic_[prev].end(), &start = parabolic_[i].start();
+    // The corner data of cornerData2 (patch.cpp): a from R_{i−1}(1 − t, s), b from R_i(s, t).
+    Vec3 a[3][3], b[3][3];
+    a[0][0] = start.P;
+    a[1][0] = end.T, a[2][0] = end.C;
+    a[0][1] = -end.dP, a[1][1] = -end.dT, a[2][1] = -end.dC;
+    a[0][2] = end.ddP, a[1][2] = end.ddT, a[2][2] = end.ddC;
+    b[1][0] = start.dP, b[2][0] = start.ddP;
+    b[0][1] = start.T, b[1][1] = start.dT, b[2][1] = start.ddT;
+    b[0][2] = start.C, b[1][2] = start.dC, b[2][2] = start.ddC;
+    int used = 0;
+    vectors[used++] = a[0][0];
+    for (int p = 0; p <= 2; ++p)
+      for (int r = 0; r <= 2; ++r)
+        if (p || r) vectors[used++] = a[p][r], vectors[used++] = b[p][r];
+  } else {
+    const RibbonJet start = ribbons_[i].at(0.0), end = ribbons_[prev].at(1.0);
+    // CornerData{a00, a10, a01, a11, b10, b01, b11} of Patch::gregory, in kernel order.
+    vectors = {start.P, end.T, start.dP, -end.dP, start.T, -end.dT, start.dT};
+  }
+  kernels::GregoryCorner corner{};
+  for (int c = 0; c < kMaxCornerVectors; ++c)
+    corner.v[c][0] = vectors[c].x, corner.v[c][1] = vectors[c].y, corner.v[c][2] = vectors[c].z;
+  return corner;
+}
+
+std::size_t PatchTables::memory() const {
+  std::size_t bytes = corners.size() * sizeof(kernels::GregoryCorner);
+  for (const RibbonTable &t : sides) bytes += t.memory();
+  return bytes;
+}
+
+const PatchTables &Patch::tables() const {
+  CURVENET_CHECK(options_.scheme == Scheme::GregoryG1 || options_.scheme == Scheme::GregoryG2,
+                 "ribbon tables are built for the Gregory schemes");
+  std::call_once(tables_->once, [this] {
+    PatchTables &t = tables_->tables;
+    const bool g2 = options_.scheme == Scheme::GregoryG2;
+    for (int i = 0; i < domain_.sides(); ++i) {
+      // Exact jets without snapping: the table asks one ulp inside each
+      // interval to get the side of a segment break it needs.
+      RibbonTable::Exact exact;
+      if (g2) {
+        exact = [&ribbon = parabolic_[i]](std::span<const double> at, double *values, double *slopes) {
+          std::vector<ParabolicJet> jets(at.size());
+          ribbon.at(at, jets);
+          for (std::size_t k = 0; k < at.size(); ++k) {
+            const ParabolicJet &j = jets[k];
+            const Vec3 v[3] = {j.P, j.T, j.C}, d[3] = {j.dP, j.dT, j.dC};
+            for (int f = 0; f < 3; ++f)
+              for (int c = 0; c < 3; ++c) values[k * 9 + f * 3 + c] = v[f][c], slopes[k * 9 + f * 3 + c] = d[f][c];
+          }
+        };
+        t.sides.emplace_back(9, parabolic_[i].breakpoints(), exact);
+      } else {
+        exact = [&ribbon = ribbons_[i]](std::span<const double> at, double *values, double *slopes) {
+          std::vector<RibbonJet> jets(at.size());
+          ribbon.at(at, jets);
+          for (std::size_t k = 0; k < at.size(); ++k) {
+            const RibbonJet &j = jets[k];
+            const Vec3 v[2] = {j.P, j.T}, d[2] = {j.dP, j.dT};
+            for (int f = 0; f < 2; ++f)
+              for (int c = 0; c < 3; ++c) values[k * 6 + f * 3 + c] = v[f][c], slopes[k * 6 + f * 3 + c] = d[f][c];
+          }
+        };
+        t.sides.emplace_back(6, ribbons_[i].breakpoints(), exact);
+      }
+      t.corners.push_back(cornerVectors(i));
+    }
+  });
+  return tables_->tables;
+}
+
+void Patch::evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t first, std::size_t count,
+                                     double *const out[3]) const {
+  const int n = domain_.sides();
+  CURVENET_CHECK(plan.key().sides == n && plan.key().scheme == options_.scheme,
+                 "plan for " + std::to_string(plan.key().sides) + " sides used on a patch with " + std::to_string(n));
+  if (options_.scheme == Scheme::CompositeRibbon) {
+    thread_local std::vector<DualVec3> values;
+    values.resize(count);
+    evaluatePlanned(plan, first, count, values.data());
+    for (std::size_t k = 0; k < count; ++k)
+      out[0][k] = values[k].v.x, out[1][k] = values[k].v.y, out[2][k] = values[k].v.z;
+    return;
+  }
+  const PatchTables &t = tables();
+  const bool g2 = options_.scheme == Scheme::GregoryG2;
+  const int dims = g2 ? 9 : 6;
+  thread_local Scratch scratch;
+  scratch.reset(count, static_cast<std::size_t>(n) * (3 + dims));
+  kernels::GregorySamples in;
+  in.sides = n, in.parabolic = g2;
+  for (int i = 0; i < n; ++i) {
+    double *side = scratch.take(), *blend = scratch.take(), *at = scratch.take();
+    const bool breaks = ribbons_[i].pieces().size() > 1;
+    for (std::size_t k = 0; k < count; ++k) {
+      side[k] = plan.sideValue(i, first + k);
+      blend[k] = plan.blendValue(i, first + k);
+      at[k] = std::clamp(side[k], 0.0, 1.0);
+      if (breaks) at[k] = ribbons_[i].snap(at[k]);
+    }
+    double *jets[9];
+    for (int c = 0; c < dims; ++c) jets[c] = scratch.take();
+    t.sides[i].evaluate(count, at, jets, nullptr);
+    in.s[i] = side, in.blend[i] = blend;
+    for (int c = 0; c < 3; ++c) {
+      in.P[i][c] = jets[c], in.T[i][c] = jets[3 + c];
+      if (g2) in.C[i][c] = jets[6 + c];
+    }
+  }
+  kernels::gregoryPositions(count, in, t.corners.data(), out);
+}
+
 void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::size_t count, DualVec3 *out) const {
   const int n = domain_.sides();
   CURVENET_CHECK(plan.key().sides == n && plan.key().scheme == options_.scheme,
@@ -130,8 +248,10 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
   const kernels::DualVec3Span accOut{{acc[0], acc[1], acc[2]}, {acc[3], acc[4], acc[5]}, {acc[6], acc[7], acc[8]}};
 
   // Geometry: each side's ribbon at the plan's side parameters, one batch per
-  // side (the plan's samples run along rows, so consecutive side parameters
-  // mostly share a knot span).
+  // side — from the tables at high resolutions, else exactly (the plan's
+  // samples run along rows, so consecutive side parameters mostly share a
+  // knot span).
+  const PatchTables *tables = plan.key().resolution >= kTableResolution ? &this->tables() : nullptr;
   thread_local std::vector<double> at;
   thread_local std::vector<RibbonJet> linearJets;
   thread_local std::vector<ParabolicJet> parabolicJets;
@@ -143,7 +263,13 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
       blend[i].set(k, plan.blend(i, first + k));
       at[k] = ribbons_[i].snap(std::clamp(s.v, 0.0, 1.0));
     }
-    if (g2) {
+    if (tables) {
+      double *values[9] = {jets[i].P.c[0], jets[i].P.c[1], jets[i].P.c[2], jets[i].T.c[0], jets[i].T.c[1],
+                           jets[i].T.c[2], jets[i].C.c[0], jets[i].C.c[1], jets[i].C.c[2]};
+      double *slopes[9] = {jets[i].dP.c[0], jets[i].dP.c[1], jets[i].dP.c[2], jets[i].dT.c[0], jets[i].dT.c[1],
+                           jets[i].dT.c[2], jets[i].dC.c[0], jets[i].dC.c[1], jets[i].dC.c[2]};
+      tables->sides[i].evaluate(count, at.data(), values, slopes);
+    } else if (g2) {
       parabolicJets.resize(count);
       parabolic_[i].at(at, parabolicJets);
       for (std::size_t k = 0; k < count; ++k) {
@@ -173,22 +299,11 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
 
     // Correction patch: −B Q = Σ_c (−B ω_c) V_c over the corner vectors V_c.
     std::array<Vec3, kMaxCornerVectors> vectors;
+    {
+      const kernels::GregoryCorner corner = tables ? tables->corners[i] : cornerVectors(i);
+      for (int c = 0; c < kMaxCornerVectors; ++c) vectors[c] = {corner.v[c][0], corner.v[c][1], corner.v[c][2]};
+    }
     if (g2) {
-      const SideEndData &end = parabolic_[prev].end(), &start = parabolic_[i].start();
-      // The corner data of cornerData2 (patch.cpp): a from R_{i−1}(1 − t, s), b from R_i(s, t).
-      Vec3 a[3][3], b[3][3];
-      a[0][0] = start.P;
-      a[1][0] = end.T, a[2][0] = end.C;
-      a[0][1] = -end.dP, a[1][1] = -end.dT, a[2][1] = -end.dC;
-      a[0][2] = end.ddP, a[1][2] = end.ddT, a[2][2] = end.ddC;
-      b[1][0] = start.dP, b[2][0] = start.ddP;
-      b[0][1] = start.T, b[1][1] = start.dT, b[2][1] = start.ddT;
-      b[0][2] = start.C, b[1][2] = start.dC, b[2][2] = start.ddC;
-      int used = 0;
-      vectors[used++] = a[0][0];
-      for (int p = 0; p <= 2; ++p)
-        for (int r = 0; r <= 2; ++r)
-          if (p || r) vectors[used++] = a[p][r], vectors[used++] = b[p][r];
       constexpr double inverseFactorial[3] = {1.0, 1.0, 0.5};
       for (std::size_t k = 0; k < count; ++k) {
         CorrectionSum sum;
@@ -210,9 +325,6 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
         sum.addTo(acc, k);
       }
     } else {
-      const RibbonJet start = ribbons_[i].at(0.0), end = ribbons_[prev].at(1.0);
-      // CornerData{a00, a10, a01, a11, b10, b01, b11} of Patch::gregory.
-      vectors = {start.P, end.T, start.dP, -end.dP, start.T, -end.dT, start.dT};
       for (std::size_t k = 0; k < count; ++k) {
         const Dual s{side[i].v[k], side[i].du[k], side[i].dv[k]}, t{across.v[k], across.du[k], across.dv[k]};
         const Dual minusB = -Dual{blend[i].v[k], blend[i].du[k], blend[i].dv[k]};

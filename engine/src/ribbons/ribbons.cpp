@@ -355,5 +355,47 @@ SideEndData ParabolicRibbon::secondOrder(double s) const {
   return {j.P, j.dP, j.ddP, j.T, j.dT, j.ddT, p.C, p.dC, ddC};
 }
 
+namespace {
+/// Interior knots of c, mapped to [0, 1] over its domain.
+void interiorKnots(const BSplineCurve &c, std::vector<double> &out) {
+  const double a = c.domainStart(), b = c.domainEnd();
+  for (double k : c.knots())
+    if (k > a && k < b) out.push_back((k - a) / (b - a));
+}
+} // namespace
+
+std::vector<double> NormalFence::breakpoints() const {
+  std::vector<double> out;
+  interiorKnots(curve_, out);
+  interiorKnots(smoothNormal_, out);
+  return out;
+}
+
+std::vector<double> TransversalCurvature::breakpoints() const {
+  std::vector<double> out;
+  interiorKnots(spline_, out);
+  return out;
+}
+
+std::vector<double> LinearRibbon::breakpoints() const {
+  std::vector<double> out;
+  interiorKnots(curve_, out);
+  for (const Piece &piece : pieces_) {
+    if (piece.sTo < 1) out.push_back(piece.sTo);
+    for (double u : piece.fence->breakpoints())
+      out.push_back(piece.sFrom + (piece.sTo - piece.sFrom) * (piece.reversed ? 1 - u : u));
+  }
+  return out;
+}
+
+std::vector<double> ParabolicRibbon::breakpoints() const {
+  std::vector<double> out = linear_.breakpoints();
+  const auto &pieces = linear_.pieces();
+  for (std::size_t j = 0; j < pieces.size(); ++j)
+    for (double u : curvatures_[j]->breakpoints())
+      out.push_back(pieces[j].sFrom + (pieces[j].sTo - pieces[j].sFrom) * (pieces[j].reversed ? 1 - u : u));
+  return out;
+}
+
 } // namespace v1
 } // namespace curvenet

@@ -62,6 +62,9 @@ public:
   void normalJet(double u, Vec3 &n, Vec3 &dn, Vec3 &ddn) const;
   /// The same with the segment's derivatives at u supplied (see above).
   void normalJet(double u, const std::array<Vec3, 4> &curve, Vec3 &n, Vec3 &dn, Vec3 &ddn) const;
+  /// Segment parameters in (0, 1) where derivatives of the normal may jump:
+  /// the knots of the segment and of the normal interpolant.
+  std::vector<double> breakpoints() const;
 
 private:
   NormalFence() = default;
@@ -82,6 +85,8 @@ public:
   explicit TransversalCurvature(const std::vector<double> &samples);
   /// κ_D and dκ_D/du.
   void valueAndDerivative(double u, double &k, double &dk) const;
+  /// Segment parameters in (0, 1) where derivatives of κ_D may jump.
+  std::vector<double> breakpoints() const;
 
 private:
   BSplineCurve spline_; ///< κ in the x coordinate
@@ -167,6 +172,9 @@ public:
   /// Index of the piece holding side parameter s, the segment parameter
   /// there, and du/ds.
   int pieceAt(double s, double &local, double &dLocal) const;
+  /// Side parameters in (0, 1) where derivatives of P or T may jump: segment
+  /// breaks, knots of the side curve, the fences' breakpoints.
+  std::vector<double> breakpoints() const;
 
 private:
   /// The blend of α, β at s with its first two derivatives.
@@ -207,6 +215,9 @@ public:
   /// patch). C'' is the fourth-order difference of the exact C' (step 1e-3;
   /// one-sided within 4 steps of an end, so that it equals end()/start() there).
   SideEndData secondOrder(double s) const;
+  /// Side parameters in (0, 1) where derivatives of P, T or C may jump: the
+  /// linear ribbon's and the transversal curvatures' breakpoints.
+  std::vector<double> breakpoints() const;
 
 private:
   ParabolicJet jet(double s, const std::array<Vec3, 4> &curve) const;

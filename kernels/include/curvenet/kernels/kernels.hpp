@@ -76,6 +76,56 @@ void accumulate(std::size_t count, DualSpan w, ConstDualVec3Span x, DualVec3Span
 void accumulateConstant(std::size_t count, DualSpan w, const double c[3], DualVec3Span out,
                         std::int64_t width = kBestWidth);
 
+/// A piecewise degree-5 polynomial in one parameter s ∈ [0, 1] with `dims`
+/// coordinates (RibbonTable's storage): interval j covers (starts[j],
+/// ends[j]] (the first also s = 0) and holds 6 rows of `paddedDims`
+/// doubles, the coefficients of t⁰ … t⁵ in t = (s − starts[j]) ·
+/// inverseWidths[j]; rows are padded with zeros to a multiple of 4.
+/// cellFirst[c] is the first interval reaching c / cells; at most `steps`
+/// moves forward from it reach any s of the cell.
+struct PolynomialTable {
+  int dims = 0, paddedDims = 0, steps = 0;
+  std::size_t intervals = 0, cells = 0;
+  const double *starts = nullptr, *ends = nullptr, *inverseWidths = nullptr, *coefficients = nullptr;
+  const std::uint32_t *cellFirst = nullptr;
+};
+
+/// (b) Batched ribbon evaluation: the table at s[0 .. count) into
+/// values[c][k] and, when slopes is not null, d/ds into slopes[c][k]. Each
+/// sample's interval is looked up, then its polynomial evaluated with the
+/// coordinates across the SIMD lanes (the reference: one at a time).
+void evaluateTable(std::size_t count, const PolynomialTable &table, const double *s, double *const *values,
+                   double *const *slopes, std::int64_t width = kBestWidth);
+
+/// Per-sample data of a Gregory corner-based patch for its positions: for
+/// each side i < sides, the side parameter s_i (also the distance parameter
+/// of the neighbouring side's ribbon), the normalized corner blend
+/// B_{i,i−1}, and that side's ribbon P_i, T_i (C_i when parabolic) at s_i.
+struct GregorySamples {
+  static constexpr int kMaxSides = 8;
+  int sides = 0;          ///< 3 … 8
+  bool parabolic = false; ///< G² (parabolic ribbons, nine-term correction) or G¹
+  const double *s[kMaxSides] = {}, *blend[kMaxSides] = {};
+  const double *P[kMaxSides][3] = {}, *T[kMaxSides][3] = {}, *C[kMaxSides][3] = {};
+};
+
+/// The correction patch's constant vectors at corner i (where side i − 1
+/// ends and side i starts). G¹ (7 used): a00, a10, b10, a01, b01, a11, b11
+/// of Q = a00 + s W(a10, b10; s, t²) + t W(a01, b01; s², t) + s t W(a11, b11; s, t);
+/// G² (17): a00, then a_pq, b_pq for p, q ∈ {0, 1, 2} row by row without
+/// (0, 0), of paper 000 eq. 22 (W_pq = (s^{3−p} a + t^{3−q} b) / (s^{3−p} + t^{3−q})).
+struct GregoryCorner {
+  double v[17][3];
+};
+
+/// (b) Gregory patch positions (paper 000 eqs. 16–18, 22):
+/// out[c][k] = Σ_i B_i (R_{i−1}(s_{i−1}, s_i) + R_i(s_i, t_i) − Q_i(s_i, t_i)),
+/// t_i = 1 − s_{i−1}, R(σ, δ) = P(σ) + δ T(σ) [+ ½ δ² C(σ)]. The rational
+/// weights of each corner share one division (batch inversion). Samples
+/// exactly at a corner (s_i = t_i = 0) give that corner's finite limit.
+void gregoryPositions(std::size_t count, const GregorySamples &samples, const GregoryCorner *corners,
+                      double *const out[3], std::int64_t width = kBestWidth);
+
 /// Constants of one side of a regular domain for the cubic Hermite sweepline
 /// (paper 000 eq. 20) in that side's frame (side from (0,0) to (1,0), domain
 /// at y > 0): a, b the directions of the neighbouring sides leaving the two

@@ -1,0 +1,108 @@
+// Ribbon tables and the position-only planned evaluation: the quintic
+// Hermite table against functions it must reproduce exactly and against the
+// exact ribbons of every built-in; planned positions against the pointwise
+// Surface path.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "bezier/bezier_surface.hpp"
+#include "curvenet/builtins.hpp"
+#include "curvenet/tessellate.hpp"
+#include "patches/patch.hpp"
+#include "plans/plan.hpp"
+#include "ribbons/ribbon_table.hpp"
+
+using namespace curvenet;
+
+TEST(RibbonTable, ReproducesQuinticsAndKinksAtBreaks) {
+  // Two coordinates: a quintic (a quintic Hermite interpolant is exact for
+  // it) and a function whose derivative jumps at the declared break 0.3.
+  auto exact = [](std::span<const double> s, double *values, double *slopes) {
+    for (std::size_t k = 0; k < s.size(); ++k) {
+      const double x = s[k];
+      values[2 * k] = ((((3 * x - 2) * x + 1) * x - 4) * x + 0.5) * x + 2;
+      slopes[2 * k] = (((15 * x - 8) * x + 3) * x - 8) * x + 0.5;
+      values[2 * k + 1] = x <= 0.3 ? std::sin(x) : std::sin(0.3) + 2 * (x - 0.3) * (x - 0.3) + 3 * (x - 0.3);
+      slopes[2 * k + 1] = x <= 0.3 ? std::cos(x) : 4 * (x - 0.3) + 3;
+    }
+  };
+  const RibbonTable table(2, {0.3}, exact);
+  EXPECT_LE(table.valueError(), 1e-13);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0, 1);
+  double worst = 0, worstSlope = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const double s = k < 3 ? 0.3 * k : u(rng);
+    double want[2], wantSlope[2], got[2], gotSlope[2];
+    exact(std::span<const double>(&s, 1), want, wantSlope);
+    table.evaluate(s, got, gotSlope);
+    for (int c = 0; c < 2; ++c) {
+      worst = std::max(worst, std::abs(got[c] - want[c]));
+      worstSlope = std::max(worstSlope, std::abs(gotSlope[c] - wantSlope[c]));
+    }
+  }
+  EXPECT_LE(worst, 5e-13);
+  EXPECT_LE(worstSlope, 1e-10);
+  // Without the break the kink cannot be resolved to the tolerance.
+  const RibbonTable blind(2, {}, exact);
+  EXPECT_GT(blind.intervals(), table.intervals());
+}
+
+TEST(RibbonTable, MatchesExactRibbonsOfEveryBuiltin) {
+  for (const BuiltinInfo &info : builtinNetworks()) {
+    const Network network = Network::build(builtinNetwork(info.name));
+    for (Scheme scheme : {Scheme::GregoryG1, Scheme::GregoryG2}) {
+      const Surface surface = Surface::build(network, {scheme});
+      std::size_t intervals = 0, sides = 0;
+      for (int f = 0; f < surface.faceCount(); ++f) {
+        const Patch &patch = *SurfaceAccess::patch(surface, f);
+        for (const RibbonTable &t : patch.tables().sides) {
+          EXPECT_LE(t.valueError(), 1e-13) << info.name << " face " << f;
+          EXPECT_LE(t.slopeError(), 1e-10) << info.name << " face " << f;
+          intervals += t.intervals(), ++sides;
+        }
+      }
+      // Compact: a few hundred intervals per side at most on the built-ins.
+      EXPECT_LE(intervals, 400 * sides) << info.name;
+      std::printf("%-36s %s: %.0f intervals per side\n", info.name.c_str(), schemeName(scheme).c_str(),
+                  double(intervals) / double(sides));
+    }
+  }
+}
+
+TEST(PlannedPositions, MatchPointwiseEvaluationOnEveryBuiltin) {
+  for (const BuiltinInfo &info : builtinNetworks()) {
+    const Network network = Network::build(builtinNetwork(info.name));
+    for (SurfaceOptions o : {SurfaceOptions{Scheme::GregoryG1, Sweepline::Radial},
+                             SurfaceOptions{Scheme::GregoryG2, Sweepline::Hermite},
+                             SurfaceOptions{Scheme::CompositeRibbon}}) {
+      const Surface surface = Surface::build(network, o);
+      BoundingBox box;
+      for (const Vertex &v : network.vertices()) box.add(v.position);
+      double worst = 0, worstPlanned = 0, worstSlope = 0;
+      for (int f = 0; f < surface.faceCount(); ++f) {
+        const Patch &patch = *SurfaceAccess::patch(surface, f);
+        const auto plan = evaluationPlan(planKey(surface.options(), surface.domainSides(f), 40));
+        std::vector<double> x(plan->size()), y(plan->size()), z(plan->size());
+        double *out[3] = {x.data(), y.data(), z.data()};
+        patch.evaluatePlannedPositions(*plan, 0, plan->size(), out);
+        std::vector<DualVec3> planned(plan->size());
+        patch.evaluatePlanned(*plan, 0, plan->size(), planned.data()); // through the tables at r = 40
+        for (std::size_t k = 0; k < plan->size(); k += 23) {
+          const DualVec3 p = patch.evaluate(plan->samples()[k].x, plan->samples()[k].y);
+          worst = std::max(worst, norm(Vec3{x[k], y[k], z[k]} - p.v));
+          worstPlanned = std::max(worstPlanned, norm(planned[k].v - p.v));
+          // Relative to the derivatives themselves: on triangles they grow
+          // without bound towards the corners' opposite sides' sweep poles.
+          const double size = box.diagonal() + norm(p.du) + norm(p.dv);
+          worstSlope = std::max({worstSlope, norm(planned[k].du - p.du) / size, norm(planned[k].dv - p.dv) / size});
+        }
+      }
+      EXPECT_LE(worst, 1e-12 * box.diagonal()) << info.name << " " << schemeName(o.scheme);
+      EXPECT_LE(worstPlanned, 1e-12 * box.diagonal()) << info.name << " " << schemeName(o.scheme);
+      EXPECT_LE(worstSlope, 1e-9) << info.name << " " << schemeName(o.scheme);
+    }
+  }
+}
