@@ -507,6 +507,18 @@ TEST(SetbackVertexBlend, SlaveIsCurvatureContinuousToEveryMaster) {
   }
   EXPECT_TRUE(seen[0] && seen[1] && seen[2]);
 
+  // Written in the native format and read back (rational arcs, master
+  // names), the network gives the same slave: the same jumps to the masters.
+  const NetworkDescription back = parseNetworkJson(networkToJson(builtinNetwork("setback-vertex-blend")));
+  ASSERT_EQ(back.edges.size(), 3u);
+  const Surface g2Back = Surface::build(Network::build(back), g2Options);
+  const std::vector<MasterEdgeJump> mastersBack = masterEdgeJumps(g2Back, measureCurvatureJump(g2Back));
+  ASSERT_EQ(mastersBack.size(), masters.size());
+  for (size_t k = 0; k < masters.size(); ++k) {
+    EXPECT_EQ(mastersBack[k].masterFace, masters[k].masterFace);
+    EXPECT_LE(mastersBack[k].maxJump, 1e-4);
+  }
+
   // The masters' own patches against their cylinders: distance of the
   // tessellated fillet points from the fillet axis, minus the radius.
   for (const Surface *surface : {&g1, &g2}) {
