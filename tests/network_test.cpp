@@ -40,7 +40,7 @@ TEST_P(BuiltinNetwork, EveryInteriorSegmentHasTwoOppositelyOrientedFaces) {
 
 INSTANTIATE_TEST_SUITE_P(AllBuiltins, BuiltinNetwork,
                          ::testing::Values("pentagon", "sphere-dodecahedron", "ellipsoid-truncated-icosahedron",
-                                           "torus-mixed", "saddle-nodes"),
+                                           "torus-mixed", "saddle-nodes", "setback-vertex-blend"),
                          [](const ::testing::TestParamInfo<std::string> &test) {
                            std::string name = test.param;
                            for (char &c : name)

@@ -101,6 +101,23 @@ void addSurfaceReport(nlohmann::json &report, const Surface &surface, int sample
                       : "fourth-order differences of the exact first derivatives, step 1e-5") +
       "; 17 points per shared segment, 1% left out at each end; |k_A - k_B| / max(|k_A|, |k_B|, 1/diagonal)";
   addCompositeFaces(report, surface, jump);
+  // Master edges (paper 000 Sec. 5.1): the jump from each slave to its master.
+  const std::vector<MasterEdgeJump> masters = masterEdgeJumps(surface, jump);
+  if (!masters.empty()) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const MasterEdgeJump &m : masters) {
+      const std::string &masterName = surface.network().faces()[size_t(m.masterFace)].name;
+      list.push_back({{"edge", m.segment},
+                      {"curve", m.curve},
+                      {"master_face", m.masterFace},
+                      {"master_name", masterName},
+                      {"slave_face", m.slaveFace},
+                      {"max_curvature_jump", m.maxJump},
+                      {"mean_curvature_jump", m.meanJump},
+                      {"samples", m.samples}});
+    }
+    report["masters"] = std::move(list);
+  }
   if (const auto d = measureReferenceDeviation(surface, resolution)) {
     report["reference"] = {{"max_deviation", d->maxDeviation},
                            {"mean_deviation", d->meanDeviation},
@@ -251,6 +268,16 @@ void printReportTable(const nlohmann::json &report) {
       std::printf("  face %d: %zu patches, %zu hidden seams, max seam curvature jump %.3g%s\n", c["face"].get<int>(),
                   c["patches"].size(), c["hidden_seams"].size(), c["max_seam_curvature_jump"].get<double>(),
                   c["folded"].get<bool>() ? ", FOLDED" : "");
+  }
+  if (report.contains("masters")) {
+    std::printf("\nmaster edges (the slave face takes the master's cross curvature; jump as max_curvature_jump):\n");
+    for (const auto &m : report["masters"]) {
+      const std::string name = m["master_name"].get<std::string>();
+      std::printf("  edge %d (curve %d): master face %d%s%s%s, slave face %d, max curvature jump %.3g (mean %.3g)\n",
+                  m["edge"].get<int>(), m["curve"].get<int>(), m["master_face"].get<int>(), name.empty() ? "" : " (",
+                  name.c_str(), name.empty() ? "" : ")", m["slave_face"].get<int>(),
+                  m["max_curvature_jump"].get<double>(), m["mean_curvature_jump"].get<double>());
+    }
   }
   if (report.contains("reference")) {
     std::printf("\nreference deviation (relative to the diagonal):\n");

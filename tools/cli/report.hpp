@@ -18,7 +18,10 @@ nlohmann::json networkReport(const Network &network, const std::string &input);
 /// Adds the surface figures of DESIGN.md §5 for one scheme: `scheme`,
 /// `continuity.*` (sampled at `samplesPerSegment` points per segment) and,
 /// when the network has a reference surface, `reference.*` (measured at the
-/// vertices of a tessellation at `resolution`).
+/// vertices of a tessellation at `resolution`); when edges name a master
+/// face, `masters[]` with per master edge `edge` (segment), `curve`,
+/// `master_face`, `master_name`, `slave_face`, `max_curvature_jump`,
+/// `mean_curvature_jump` and `samples`.
 void addSurfaceReport(nlohmann::json &report, const Surface &surface, int samplesPerSegment, int resolution);
 
 /// Adds the vertex analysis (curvenet/analysis.hpp) to a networkReport: per

@@ -57,5 +57,21 @@ struct CurvatureJumpReport {
 /// InputError for options out of range.
 CurvatureJumpReport measureCurvatureJump(const Surface &surface, const CurvatureJumpOptions &options = {});
 
+/// The curvature jump across one master edge (paper 000 Sec. 5.1): a shared
+/// segment whose curve names a master face (Segment::masterFace).
+struct MasterEdgeJump {
+  int segment = -1;    ///< index into Network::segments()
+  int curve = -1;      ///< the description's curve the segment is a piece of
+  int masterFace = -1; ///< the face whose cross curvature is kept
+  int slaveFace = -1;  ///< the face on the other side, which takes it
+  int samples = 0;     ///< compared points on this segment
+  double maxJump = 0, meanJump = 0; ///< as CurvatureJumpReport, over this segment's samples
+};
+
+/// Per master edge, in segment order, the jump figures of `report` (which
+/// must come from measureCurvatureJump on `surface`) restricted to that
+/// segment; empty when no segment names a master. Cost: linear in the samples.
+std::vector<MasterEdgeJump> masterEdgeJumps(const Surface &surface, const CurvatureJumpReport &report);
+
 } // namespace v1
 } // namespace curvenet

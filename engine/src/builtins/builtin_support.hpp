@@ -56,6 +56,9 @@ BuiltinData saddleNodes();
 BuiltinData concaveL();
 BuiltinData ring();
 
+// Master–slave vertex blend (paper 000 Sec. 5.1, Fig. 8), see setback.cpp.
+BuiltinData setbackVertexBlend();
+
 // Cubic Bézier networks with T-junctions (paper 003), see tjunctions.cpp.
 BuiltinData hemisphereTJunction();
 BuiltinData tjunctionSurrounded();

@@ -50,6 +50,9 @@ const std::vector<Entry> &entries() {
       {{"ring", "a square face with a circular hole on the bowl z = 0.25x^2 + 0.15y^2; four connection curves "
                 "make it four quads (hidden)"},
        [] { return ring(); }},
+      {{"setback-vertex-blend", "box corner with cylindrical fillets of radii 0.30, 0.22, 0.38 (the masters) and a "
+                                "6-sided setback vertex blend G2 to all three (the slave); no reference surface"},
+       [] { return setbackVertexBlend(); }},
   };
   return list;
 }

@@ -59,5 +59,27 @@ CurvatureJumpReport measureCurvatureJump(const Surface &surface, const Curvature
   return report;
 }
 
+std::vector<MasterEdgeJump> masterEdgeJumps(const Surface &surface, const CurvatureJumpReport &report) {
+  const Network &network = surface.network();
+  std::vector<MasterEdgeJump> masters;
+  std::vector<int> slot(network.segments().size(), -1);
+  for (size_t e = 0; e < network.segments().size(); ++e) {
+    const Segment &seg = network.segments()[e];
+    if (seg.masterFace < 0 || seg.isBoundary()) continue;
+    slot[e] = static_cast<int>(masters.size());
+    masters.push_back({int(e), seg.sourceCurve, seg.masterFace, seg.faces[0] == seg.masterFace ? seg.faces[1] : seg.faces[0]});
+  }
+  for (const CurvatureJumpSample &sample : report.samples) {
+    if (sample.segment < 0 || size_t(sample.segment) >= slot.size() || slot[size_t(sample.segment)] < 0) continue;
+    MasterEdgeJump &m = masters[size_t(slot[size_t(sample.segment)])];
+    m.maxJump = std::max(m.maxJump, sample.jump);
+    m.meanJump += sample.jump;
+    ++m.samples;
+  }
+  for (MasterEdgeJump &m : masters)
+    if (m.samples > 0) m.meanJump /= m.samples;
+  return masters;
+}
+
 } // namespace v1
 } // namespace curvenet
