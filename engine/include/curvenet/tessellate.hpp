@@ -55,5 +55,16 @@ std::size_t estimateMeshVertices(const Surface &surface, int resolution);
 /// sample of each distinct (sides, resolution)). Thread-safe.
 Mesh tessellate(const Surface &surface, const TessellationOptions &options = {});
 
+/// Positions alone of every face's interior samples at options.resolution:
+/// the points tessellate() places inside the faces, in its vertex order
+/// (face by face, after the boundary samples), without normals, boundary
+/// samples or triangles. The Gregory schemes go through the plans, each
+/// patch's ribbon tables (built on first use: about 1 ms per face) and one
+/// SIMD kernel pass per tile — the fastest way to many surface points, and
+/// what `curvenet bench` reports as evaluation speed. Other schemes take
+/// the planned or pointwise path of tessellate(). Threads as
+/// options.threads; output independent of the thread count. Thread-safe.
+std::vector<Vec3> evaluateFaceInteriors(const Surface &surface, const TessellationOptions &options = {});
+
 } // namespace v1
 } // namespace curvenet

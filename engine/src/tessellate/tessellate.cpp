@@ -130,7 +130,70 @@ std::vector<std::vector<RowPoint>> boundaryRows(const Surface &surface, const La
   return rows;
 }
 
+struct Tile {
+  int face;
+  std::size_t first, count;
+};
+
+/// Every face's plan and the tiles of its samples.
+std::vector<Tile> planTiles(const Surface &surface, int resolution,
+                            std::vector<std::shared_ptr<const EvaluationPlan>> &plans, std::size_t &total) {
+  std::vector<Tile> tiles;
+  total = 0;
+  plans.assign(static_cast<std::size_t>(surface.faceCount()), nullptr);
+  for (int f = 0; f < surface.faceCount(); ++f) {
+    plans[f] = evaluationPlan(planKey(surface.options(), surface.domainSides(f), resolution));
+    const std::size_t size = plans[f]->size();
+    for (std::size_t k = 0; k < size; k += kTileSamples) tiles.push_back({f, k, std::min(kTileSamples, size - k)});
+    total += size;
+  }
+  return tiles;
+}
+
+/// run(tile) for every tile: serially for small totals, else one tile per task.
+template <class Run> void forEachTile(const std::vector<Tile> &tiles, std::size_t total, const Run &run) {
+  if (total < kSerialSamples) {
+    for (const Tile &tile : tiles) run(tile);
+    return;
+  }
+  // One tile per task (grain 1): a tile is already ~10⁵ flops.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles.size(), 1),
+                    [&](const tbb::blocked_range<std::size_t> &range) {
+                      for (std::size_t t = range.begin(); t < range.end(); ++t) run(tiles[t]);
+                    });
+}
+
 } // namespace
+
+std::vector<Vec3> evaluateFaceInteriors(const Surface &surface, const TessellationOptions &options) {
+  if (options.resolution < 1) throw InputError("", "resolution", "must be at least 1");
+  const int faces = surface.faceCount();
+  const bool transfinite = faces > 0 && SurfaceAccess::patch(surface, 0) != nullptr;
+  if (!transfinite || !options.usePlans) {
+    // The Bézier schemes (and the pointwise reference): tessellate's own points.
+    const Mesh mesh = tessellate(surface, options);
+    const Layout layout = makeLayout(surface, options.resolution);
+    return {mesh.positions.begin() + layout.faceBase.front(), mesh.positions.end()};
+  }
+  std::optional<tbb::global_control> limit;
+  if (options.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, options.threads);
+  std::vector<std::shared_ptr<const EvaluationPlan>> plans;
+  std::size_t total = 0;
+  const std::vector<Tile> tiles = planTiles(surface, options.resolution, plans, total);
+  std::vector<std::size_t> faceBase(static_cast<std::size_t>(faces) + 1, 0);
+  for (int f = 0; f < faces; ++f) faceBase[f + 1] = faceBase[f] + plans[f]->size();
+  std::vector<Vec3> points(total);
+  const Vec3 origin = surface.origin();
+  forEachTile(tiles, total, [&](const Tile &tile) {
+    thread_local std::vector<double> xyz;
+    xyz.resize(3 * tile.count);
+    double *out[3] = {xyz.data(), xyz.data() + tile.count, xyz.data() + 2 * tile.count};
+    SurfaceAccess::patch(surface, tile.face)->evaluatePlannedPositions(*plans[tile.face], tile.first, tile.count, out);
+    Vec3 *to = points.data() + faceBase[tile.face] + tile.first;
+    for (std::size_t k = 0; k < tile.count; ++k) to[k] = Vec3{out[0][k], out[1][k], out[2][k]} + origin;
+  });
+  return points;
+}
 
 std::size_t estimateMeshVertices(const Surface &surface, int resolution) {
   std::size_t count = surface.network().vertices().size() + surface.network().segments().size() * resolution;
@@ -179,19 +242,9 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
   const bool planned = options.usePlans && faces > 0 && SurfaceAccess::patch(surface, 0) != nullptr;
   const Vec3 origin = surface.origin(); // patches evaluate in the surface's own frame
   if (planned) {
-    struct Tile {
-      int face;
-      std::size_t first, count;
-    };
-    std::vector<Tile> tiles;
     std::size_t total = 0;
-    for (int f = 0; f < faces; ++f) {
-      plans[f] = evaluationPlan(planKey(surface.options(), surface.domainSides(f), r));
-      const std::size_t size = plans[f]->size();
-      for (std::size_t k = 0; k < size; k += kTileSamples) tiles.push_back({f, k, std::min(kTileSamples, size - k)});
-      total += size;
-    }
-    auto run = [&](const Tile &tile) {
+    const std::vector<Tile> tiles = planTiles(surface, r, plans, total);
+    forEachTile(tiles, total, [&](const Tile &tile) {
       thread_local std::vector<DualVec3> values;
       values.resize(tile.count);
       const Patch &patch = *SurfaceAccess::patch(surface, tile.face);
@@ -209,16 +262,7 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
         mesh.normals[id] = normalized(normal);
         if (record) mesh.domainPoints[id] = {tile.face, uv};
       }
-    };
-    if (total < kSerialSamples) {
-      for (const Tile &tile : tiles) run(tile);
-    } else {
-      // One tile per task (grain 1): a tile is already ~10⁵ flops.
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles.size(), 1),
-                        [&](const tbb::blocked_range<std::size_t> &range) {
-                          for (std::size_t t = range.begin(); t < range.end(); ++t) run(tiles[t]);
-                        });
-    }
+    });
   }
 
   std::vector<std::vector<std::array<std::uint32_t, 3>>> triangles(faces);
