@@ -139,22 +139,19 @@ HWY_INLINE std::size_t tableInterval(const ck::PolynomialTable &tb, double s) {
 }
 
 /// One sample's coordinates x .. x + lanes − 1 (value, and d/ds when
-/// slopes are wanted) over D, whose lanes run across the coordinates.
-template <class D, class V = hn::Vec<D>>
-HWY_INLINE void tablePolynomial(D d, const ck::PolynomialTable &tb, std::size_t j, double s, std::size_t x,
-                                bool slopes, V &value, V &slope) {
-  const std::size_t row = static_cast<std::size_t>(tb.paddedDims);
-  const double *c = tb.coefficients + j * 6 * row + x;
-  const V t = hn::Set(d, (s - tb.starts[j]) * tb.inverseWidths[j]);
+/// Slopes) over D, whose lanes run across the coordinates; c points at the
+/// sample's interval, t is its local parameter.
+template <bool Slopes, class D, class V = hn::Vec<D>>
+HWY_INLINE void tablePolynomial(D d, const double *c, std::size_t row, V t, V inverseWidth, V &value, V &slope) {
   const V c0 = hn::LoadU(d, c), c1 = hn::LoadU(d, c + row), c2 = hn::LoadU(d, c + 2 * row);
   const V c3 = hn::LoadU(d, c + 3 * row), c4 = hn::LoadU(d, c + 4 * row), c5 = hn::LoadU(d, c + 5 * row);
   value = hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(c5, t, c4), t, c3), t, c2), t, c1), t, c0);
-  if (slopes) {
+  if constexpr (Slopes) {
     const V dv = hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::Mul(hn::Set(d, 5.0), c5), t, hn::Mul(hn::Set(d, 4.0), c4)),
                                                   t, hn::Mul(hn::Set(d, 3.0), c3)),
                                        t, hn::Add(c2, c2)),
                             t, c1);
-    slope = hn::Mul(dv, hn::Set(d, tb.inverseWidths[j]));
+    slope = hn::Mul(dv, inverseWidth);
   }
 }
 
@@ -162,11 +159,11 @@ HWY_INLINE void tablePolynomial(D d, const ck::PolynomialTable &tb, std::size_t 
 /// coordinates of one sample (rows are padded to a multiple of 4). With
 /// four lanes, four samples at a time are transposed in registers so that
 /// the structure-of-arrays outputs are written as whole vectors.
-template <class D> HWY_INLINE void evaluateTableWith(D d, std::size_t count, const TableArgs &a) {
+template <bool Slopes, class D> HWY_INLINE void evaluateTableWith(D d, std::size_t count, const TableArgs &a) {
   using V = hn::Vec<D>;
   const ck::PolynomialTable &tb = *a.table;
   const std::size_t lanes = hn::Lanes(d), dims = static_cast<std::size_t>(tb.dims);
-  const bool slopes = a.slopes != nullptr;
+  const std::size_t row = static_cast<std::size_t>(tb.paddedDims);
   std::size_t k = 0;
 #if HWY_TARGET != HWY_SCALAR
   if constexpr (hn::MaxLanes(D()) == 4) {
@@ -179,13 +176,20 @@ template <class D> HWY_INLINE void evaluateTableWith(D d, std::size_t count, con
         for (std::size_t c = 0; c < 4 && x + c < dims; ++c) hn::StoreU(col[c], d, out[x + c] + k);
       };
       for (; k + 4 <= count; k += 4) {
-        std::size_t j[4];
-        for (int q = 0; q < 4; ++q) j[q] = tableInterval(tb, a.s[k + q]);
+        const double *c[4];
+        V t[4], w[4];
+        for (int q = 0; q < 4; ++q) {
+          const double s = a.s[k + q];
+          const std::size_t j = tableInterval(tb, s);
+          c[q] = tb.coefficients + j * 6 * row;
+          t[q] = hn::Set(d, (s - tb.starts[j]) * tb.inverseWidths[j]);
+          w[q] = hn::Set(d, tb.inverseWidths[j]);
+        }
         for (std::size_t x = 0; x < dims; x += 4) {
           V value[4], slope[4];
-          for (int q = 0; q < 4; ++q) tablePolynomial(d, tb, j[q], a.s[k + q], x, slopes, value[q], slope[q]);
+          for (int q = 0; q < 4; ++q) tablePolynomial<Slopes>(d, c[q] + x, row, t[q], w[q], value[q], slope[q]);
           transposeStore(value, a.values, x);
-          if (slopes) transposeStore(slope, a.slopes, x);
+          if constexpr (Slopes) transposeStore(slope, a.slopes, x);
         }
       }
     }
@@ -193,22 +197,28 @@ template <class D> HWY_INLINE void evaluateTableWith(D d, std::size_t count, con
 #endif
   HWY_ALIGN double value[16], slope[16];
   for (; k < count; ++k) {
-    const std::size_t j = tableInterval(tb, a.s[k]);
+    const double s = a.s[k];
+    const std::size_t j = tableInterval(tb, s);
+    const V t = hn::Set(d, (s - tb.starts[j]) * tb.inverseWidths[j]), w = hn::Set(d, tb.inverseWidths[j]);
     for (std::size_t x = 0; x < dims; x += lanes) {
       V v, sl;
-      tablePolynomial(d, tb, j, a.s[k], x, slopes, v, sl);
+      tablePolynomial<Slopes>(d, tb.coefficients + j * 6 * row + x, row, t, w, v, sl);
       hn::Store(v, d, value + x);
-      if (slopes) hn::Store(sl, d, slope + x);
+      if constexpr (Slopes) hn::Store(sl, d, slope + x);
     }
     for (std::size_t x = 0; x < dims; ++x) a.values[x][k] = value[x];
-    if (slopes)
+    if constexpr (Slopes)
       for (std::size_t x = 0; x < dims; ++x) a.slopes[x][k] = slope[x];
   }
 }
 
 void EvaluateTable(std::size_t count, const TableArgs &args, bool reference) {
-  if (reference) evaluateTableWith(hn::CappedTag<double, 1>(), count, args);
-  else evaluateTableWith(hn::CappedTag<double, 4>(), count, args);
+  auto run = [&](auto tag) {
+    if (args.slopes) evaluateTableWith<true>(tag, count, args);
+    else evaluateTableWith<false>(tag, count, args);
+  };
+  if (reference) run(hn::CappedTag<double, 1>());
+  else run(hn::CappedTag<double, 4>());
 }
 
 /// In-place reciprocals of m positive values with one division (batch

@@ -156,11 +156,22 @@ EvaluationPlan::EvaluationPlan(const PlanKey &key) : key_(key) {
       b_[k] = first / total;
     }
   });
+  // Every side's parameter and blend values, contiguous per side, for the
+  // position-only path (no rotation lookups or copies per evaluation).
+  if (!cr) {
+    sideValues_.resize(static_cast<std::size_t>(n) * count), blendValues_.resize(static_cast<std::size_t>(n) * count);
+    tbb::parallel_for(0, n, [&](int i) {
+      for (std::size_t k = 0; k < count; ++k) {
+        sideValues_[static_cast<std::size_t>(i) * count + k] = side(i, k).v;
+        blendValues_[static_cast<std::size_t>(i) * count + k] = blend(i, k).v;
+      }
+    });
+  }
 }
 
 std::size_t EvaluationPlan::memory() const {
   return samples_.size() * sizeof(Vec2) + (s_.size() + d_.size() + b_.size()) * sizeof(Dual) +
-         rotation_.size() * sizeof(std::uint32_t);
+         rotation_.size() * sizeof(std::uint32_t) + (sideValues_.size() + blendValues_.size()) * sizeof(double);
 }
 
 namespace {

@@ -54,6 +54,10 @@ public:
     return perSide_ ? s_[static_cast<std::size_t>(i) * size() + k].v : s_[rotated(i, k)].v;
   }
   double blendValue(int i, std::size_t k) const { return b_[rotated(i, k)].v; }
+  /// Gregory schemes: side i's parameter values at every sample, and corner
+  /// i's blend values (sideValue, blendValue stored contiguously).
+  const double *sideValues(int i) const { return sideValues_.data() + static_cast<std::size_t>(i) * size(); }
+  const double *blendValues(int i) const { return blendValues_.data() + static_cast<std::size_t>(i) * size(); }
   /// True when every side's parameters are stored (see the constructor).
   bool perSide() const { return perSide_; }
   /// Gregory: corner i's normalized blend B_{i,i−1}; composite-ribbon: the
@@ -68,6 +72,7 @@ private:
   std::vector<Vec2> samples_;
   std::vector<Dual> s_, d_, b_;
   std::vector<std::uint32_t> rotation_;
+  std::vector<double> sideValues_, blendValues_;
   std::vector<double> cos_, sin_;
   bool perSide_ = false;
 };

@@ -188,22 +188,17 @@ void Patch::evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t fir
   const bool g2 = options_.scheme == Scheme::GregoryG2;
   const int dims = g2 ? 9 : 6;
   thread_local Scratch scratch;
-  scratch.reset(count, static_cast<std::size_t>(n) * (3 + dims));
+  scratch.reset(count, static_cast<std::size_t>(n) * dims);
   kernels::GregorySamples in;
   in.sides = n, in.parabolic = g2;
   for (int i = 0; i < n; ++i) {
-    double *side = scratch.take(), *blend = scratch.take(), *at = scratch.take();
-    const bool breaks = ribbons_[i].pieces().size() > 1;
-    for (std::size_t k = 0; k < count; ++k) {
-      side[k] = plan.sideValue(i, first + k);
-      blend[k] = plan.blendValue(i, first + k);
-      at[k] = std::clamp(side[k], 0.0, 1.0);
-      if (breaks) at[k] = ribbons_[i].snap(at[k]);
-    }
+    // The plan's side parameters serve as table parameters as they are:
+    // they lie in [0, 1], and near a segment break the table's side of it
+    // differs from the snapped pointwise evaluation by ~1e-12 of a slope.
+    in.s[i] = plan.sideValues(i) + first, in.blend[i] = plan.blendValues(i) + first;
     double *jets[9];
     for (int c = 0; c < dims; ++c) jets[c] = scratch.take();
-    t.sides[i].evaluate(count, at, jets, nullptr);
-    in.s[i] = side, in.blend[i] = blend;
+    t.sides[i].evaluate(count, in.s[i], jets, nullptr);
     for (int c = 0; c < 3; ++c) {
       in.P[i][c] = jets[c], in.T[i][c] = jets[3 + c];
       if (g2) in.C[i][c] = jets[6 + c];
