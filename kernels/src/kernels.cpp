@@ -439,9 +439,10 @@ HWY_INLINE void sweepRobust(D d, const ck::SweepFrame &f, V x, V y, V &best, V &
 /// robust solver. About 15 polynomial evaluations and 7 divisions per point.
 ///
 /// Certificate, per lane:
-///  * Newton converged: a step |Δs| ≤ 1e-15 inside [0, 1] (each step is
-///    clamped to [0, 1]; the lane's iterate freezes once converged, so the
-///    result does not depend on the other lanes of the vector);
+///  * Newton converged: a step |Δs| ≤ 1e-15 inside the bracket of F's sign
+///    change (steps leaving it are replaced by bisection; the lane's iterate
+///    freezes once converged, so the result does not depend on the other
+///    lanes of the vector);
 ///  * the root r is the only one on [0, 1]: F(s) = (s − r) G(s) + F(r) with
 ///    the cubic G from synthetic division. If G's Bernstein coefficients on
 ///    [0, ½] and [½, 1] share a sign with magnitude ≥ m, |G| ≥ m there (a
@@ -457,16 +458,27 @@ HWY_INLINE auto sweepFast(D d, const ck::SweepFrame &f, V x, V y, V &s, V &dist)
   const SweepQuartic<D> q(d, f, x, y);
   const V(&F)[5] = q.F;
   const V F1[5] = {F[1], hn::Add(F[2], F[2]), hn::Mul(hn::Set(d, 3.0), F[3]), hn::Mul(hn::Set(d, 4.0), F[4]), zero};
-  constexpr int kIterations = 12;
-  const V stepLimit = hn::Set(d, 1e-15);
+  constexpr int kIterations = 16;
+  const V stepLimit = hn::Set(d, 1e-15), half = hn::Set(d, 0.5);
   // The radial sweep is the Hermite sweep's first-order approximation: few
-  // steps. A NaN start (the apex itself) fails the convergence test.
+  // steps. The bracket [lo, hi] keeps the sign change of F (a certified
+  // lane has one: F(0) and F(1) differ in sign when the root is unique and
+  // away from the ends); a Newton step leaving it is replaced by bisection.
   V r = hn::Min(one, hn::Max(zero, sweepRadial(d, f, x, y)));
+  r = hn::IfThenElse(hn::Eq(r, r), r, half); // the apex itself: no radial direction
+  V lo = zero, hi = one;
+  const auto negativeAtZero = hn::Lt(F[0], zero);
   auto converged = hn::Lt(zero, zero);
   for (int it = 0; it < kIterations; ++it) {
-    const V step = hn::Div(horner(F, r), horner(F1, r));
-    r = hn::IfThenElse(converged, r, hn::Min(one, hn::Max(zero, hn::Sub(r, step))));
-    converged = hn::Or(converged, hn::Le(hn::Abs(step), stepLimit));
+    const V value = horner(F, r);
+    const auto belowLo = hn::Not(hn::Xor(hn::Lt(value, zero), negativeAtZero));
+    lo = hn::IfThenElse(belowLo, r, lo);
+    hi = hn::IfThenElse(belowLo, hi, r);
+    const V step = hn::Div(value, horner(F1, r));
+    const V newton = hn::Sub(r, step);
+    const auto inside = hn::And(hn::Ge(newton, lo), hn::Le(newton, hi));
+    r = hn::IfThenElse(converged, r, hn::IfThenElse(inside, newton, hn::Mul(half, hn::Add(lo, hi))));
+    converged = hn::Or(converged, hn::And(inside, hn::Le(hn::Abs(step), stepLimit)));
     if (hn::AllTrue(d, converged)) break;
   }
   // Deflation F = (s − r) G + F(r) and G's Bernstein coefficients on [0, 1].
@@ -477,7 +489,6 @@ HWY_INLINE auto sweepFast(D d, const ck::SweepFrame &f, V x, V y, V &s, V &dist)
   // One de Casteljau split at ½ tightens the hull (the control points of the
   // halves are convex combinations of these): it certifies most triangle
   // points whose quotient dips towards zero without a root.
-  const V half = hn::Set(d, 0.5);
   const V l1 = hn::Mul(half, hn::Add(g0, b1)), c = hn::Mul(half, hn::Add(b1, b2)), r2 = hn::Mul(half, hn::Add(b2, b3));
   const V l2 = hn::Mul(half, hn::Add(l1, c)), r1 = hn::Mul(half, hn::Add(c, r2)), mid = hn::Mul(half, hn::Add(l2, r1));
   const V low = hn::Min(hn::Min(hn::Min(g0, l1), hn::Min(l2, mid)), hn::Min(hn::Min(r1, r2), b3));
