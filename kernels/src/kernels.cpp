@@ -445,10 +445,12 @@ HWY_INLINE void sweepRobust(D d, const ck::SweepFrame &f, V x, V y, V &best, V &
 ///    lanes of the vector);
 ///  * the root r is the only one on [0, 1]: F(s) = (s − r) G(s) + F(r) with
 ///    the cubic G from synthetic division. If G's Bernstein coefficients on
-///    [0, ½] and [½, 1] share a sign with magnitude ≥ m, |G| ≥ m there (a
-///    Bernstein polynomial is a convex combination of them), so every root of F lies
-///    within (|F(r)| + rounding) / m of r; m is chosen to make that ≤ 1e-13,
-///    i.e. one root up to rounding, the one the robust solver isolates;
+///    [0, ½] and [½, 1] share a sign, |G| is bounded below on each half by
+///    them (a Bernstein polynomial is a convex combination of its
+///    coefficients); with the distance from r to each half this bounds
+///    |s − r| |G(s)| away from F(r) plus rounding, so every sign change of
+///    the computed F lies within 1e-13 of r: one root, the one the robust
+///    solver isolates;
 ///  * neither end of [0, 1] passes the robust solver's end tolerance (else
 ///    that end would be a second candidate);
 ///  * d ≥ −1e-9 with a margin: the unique root is then the selection.
@@ -491,13 +493,25 @@ HWY_INLINE auto sweepFast(D d, const ck::SweepFrame &f, V x, V y, V &s, V &dist)
   // points whose quotient dips towards zero without a root.
   const V l1 = hn::Mul(half, hn::Add(g0, b1)), c = hn::Mul(half, hn::Add(b1, b2)), r2 = hn::Mul(half, hn::Add(b2, b3));
   const V l2 = hn::Mul(half, hn::Add(l1, c)), r1 = hn::Mul(half, hn::Add(c, r2)), mid = hn::Mul(half, hn::Add(l2, r1));
-  const V low = hn::Min(hn::Min(hn::Min(g0, l1), hn::Min(l2, mid)), hn::Min(hn::Min(r1, r2), b3));
-  const V high = hn::Max(hn::Max(hn::Max(g0, l1), hn::Max(l2, mid)), hn::Max(hn::Max(r1, r2), b3));
+  const V lowLeft = hn::Min(hn::Min(g0, l1), hn::Min(l2, mid)), lowRight = hn::Min(hn::Min(mid, r1), hn::Min(r2, b3));
+  const V highLeft = hn::Max(hn::Max(g0, l1), hn::Max(l2, mid)), highRight = hn::Max(hn::Max(mid, r1), hn::Max(r2, b3));
+  const auto positive = hn::Gt(hn::Min(lowLeft, lowRight), zero), negative = hn::Lt(hn::Max(highLeft, highRight), zero);
+  // |G| ≥ m on each half (with G's sign).
+  const V mLeft = hn::IfThenElse(positive, lowLeft, hn::Neg(highLeft));
+  const V mRight = hn::IfThenElse(positive, lowRight, hn::Neg(highRight));
   V scale = hn::Abs(F[0]);
   for (int j = 1; j < 5; ++j) scale = hn::Add(scale, hn::Abs(F[j]));
-  // (|F(r)| + 8 ε Σ|F_j|) / m ≤ 1e-13.
-  const V m = hn::Mul(hn::Set(d, 1e13), hn::MulAdd(hn::Set(d, 8 * 2.220446049250313e-16), scale, hn::Abs(horner(F, r))));
-  const auto unique = hn::Or(hn::Gt(low, m), hn::Lt(high, hn::Neg(m)));
+  // Another sign change of the computed F at s needs |s − r| |G(s)| ≤ E =
+  // |F(r)| + 8 ε Σ|F_j| (Horner's error bound). On a half at distance δ from
+  // r, |s − r| ≥ max(δ, ρ) for the s farther than ρ = 1e-13 from r: so if
+  // m max(δ, ρ) > E on both halves, every root lies within ρ of r. The floor
+  // on m keeps it far above the rounding of G's coefficients.
+  const V E = hn::MulAdd(hn::Set(d, 8 * 2.220446049250313e-16), scale, hn::Abs(horner(F, r)));
+  const V rho = hn::Set(d, 1e-13), floor = hn::Mul(hn::Set(d, 1e-10), scale);
+  const V reachLeft = hn::Max(hn::Sub(r, half), rho), reachRight = hn::Max(hn::Sub(half, r), rho);
+  const auto unique = hn::And(hn::Or(positive, negative),
+                              hn::And(hn::And(hn::Gt(hn::Mul(mLeft, reachLeft), E), hn::Gt(hn::Mul(mRight, reachRight), E)),
+                                      hn::And(hn::Gt(mLeft, floor), hn::Gt(mRight, floor))));
   const V tolerance = sweepEndTolerance(d, f, x, y);
   const auto endsClear = hn::And(hn::Gt(hn::Abs(F[0]), tolerance), hn::Gt(hn::Abs(horner(F, one)), tolerance));
   V wx, wy, sx, sy;
