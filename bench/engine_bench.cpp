@@ -93,21 +93,27 @@ void kernelAccumulateBench(benchmark::State &state, std::int64_t width) {
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * kBatch));
 }
 
-void kernelSweepBench(benchmark::State &state, std::int64_t width) {
-  // Side 0 of the regular pentagon, points in its centre–side triangle.
+/// Side 0 of the regular pentagon, points (x, y) ∈ [0.05, 0.95] × [0.03, 0.57]
+/// of its frame, all inside the domain. robust: the fallback solver alone.
+void kernelSweepBench(benchmark::State &state, std::int64_t width, bool robust) {
   const double angle = 3 * 3.141592653589793 / 5; // the pentagon's interior angle
-  ck::SweepFrame frame{-std::cos(angle) * -1, std::sin(angle), 0, 0};
-  frame.ax = std::cos(angle), frame.bx = -std::cos(angle), frame.by = std::sin(angle);
+  ck::SweepFrame frame{std::cos(angle), std::sin(angle), -std::cos(angle), std::sin(angle)};
   const double alpha = frame.by / (frame.ax * frame.by - frame.ay * frame.bx); // cross((1,0), b) / cross(a, b)
   frame.apexX = frame.ax * alpha, frame.apexY = frame.ay * alpha;
   KernelData in(2, kBatch), out(2, kBatch);
   for (std::size_t k = 0; k < kBatch; ++k) in.at(1, kBatch)[k] *= 0.6;
+  std::size_t fallbacks = 0;
   for (auto _ : state) {
-    ck::hermiteSweepRoots(kBatch, frame, in.at(0, kBatch), in.at(1, kBatch), out.at(0, kBatch), out.at(1, kBatch),
-                          width);
+    if (robust)
+      ck::hermiteSweepRootsRobust(kBatch, frame, in.at(0, kBatch), in.at(1, kBatch), out.at(0, kBatch),
+                                  out.at(1, kBatch), width);
+    else
+      fallbacks += ck::hermiteSweepRoots(kBatch, frame, in.at(0, kBatch), in.at(1, kBatch), out.at(0, kBatch),
+                                         out.at(1, kBatch), width);
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * kBatch));
+  if (!robust) state.counters["fallback"] = static_cast<double>(fallbacks) / static_cast<double>(state.iterations() * kBatch);
 }
 
 int registerAll() {
@@ -131,7 +137,8 @@ int registerAll() {
     const std::string suffix = "/" + w.name + "x" + std::to_string(w.lanes);
     benchmark::RegisterBenchmark(("KernelRibbonPoints" + suffix).c_str(), kernelRibbonBench, w.id);
     benchmark::RegisterBenchmark(("KernelAccumulate" + suffix).c_str(), kernelAccumulateBench, w.id);
-    benchmark::RegisterBenchmark(("KernelHermiteSweep" + suffix).c_str(), kernelSweepBench, w.id);
+    benchmark::RegisterBenchmark(("KernelHermiteSweep" + suffix).c_str(), kernelSweepBench, w.id, false);
+    benchmark::RegisterBenchmark(("KernelHermiteSweepRobust" + suffix).c_str(), kernelSweepBench, w.id, true);
   }
   return 0;
 }

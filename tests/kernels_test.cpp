@@ -384,3 +384,108 @@ TEST(Kernels, TableEvaluationAgreesAcrossWidthsAndWithHorner) {
     }
   }
 }
+
+namespace {
+
+/// Points of side 0's frame that the fast sweep solver must hand to the
+/// robust one or get right anyway: on the three sides the sweep touches, at
+/// and near every corner, near the radial apex, outside the domain, and
+/// across the whole domain.
+std::vector<Vec2> hardSweepPoints(int n, const SideFrame &side, std::mt19937_64 &rng) {
+  const RegularDomain domain(n);
+  auto toFrame = [&](const Vec2 &q) {
+    const Vec2 r = q - side.p0;
+    return Vec2{dot(r, side.e) / dot(side.e, side.e), cross(side.e, r) / dot(side.e, side.e)};
+  };
+  std::uniform_real_distribution<double> unit(0, 1), box(-1.2, 1.2), angle(0, 2 * std::numbers::pi);
+  std::vector<Vec2> points;
+  const ck::SweepFrame &f = side.frame;
+  for (int k = 0; k < 2000; ++k) {
+    const double t = unit(rng);
+    points.push_back({t, 0});                           // side 0
+    points.push_back({t * f.ax, t * f.ay});             // side −1, leaving (0, 0) along a
+    points.push_back({1 + t * f.bx, t * f.by});         // side +1, leaving (1, 0) along b
+    points.push_back(toFrame(Vec2{box(rng), box(rng)})); // anywhere, mostly outside
+  }
+  std::vector<Vec2> specials;
+  for (int i = 0; i < n; ++i) specials.push_back(toFrame(domain.corner(i)));
+  specials.push_back(toFrame(Vec2{0, 0})); // the domain's centre
+  if (!f.parallel) specials.push_back({f.apexX, f.apexY});
+  for (const Vec2 &c : specials) {
+    points.push_back(c);
+    for (double r = 1e-15; r < 0.1; r *= 3.7)
+      for (int k = 0; k < 8; ++k) {
+        const double phi = angle(rng);
+        points.push_back(c + Vec2{std::cos(phi), std::sin(phi)} * r);
+      }
+  }
+  while (points.size() < 30000) {
+    const Vec2 q{box(rng), box(rng)};
+    bool inside = true;
+    for (int i = 0; i < n && inside; ++i) inside = domain.perpendicularDistance(i, q.x, q.y).v > 0;
+    if (inside) points.push_back(toFrame(q));
+  }
+  return points;
+}
+
+TEST(Kernels, SweepFastPathAgreesWithRobustSolverWhereItFallsBack) {
+  std::mt19937_64 rng(17);
+  for (int n = 3; n <= 8; ++n) {
+    const SideFrame side = sideZeroFrame(n);
+    const std::vector<Vec2> points = hardSweepPoints(n, side, rng);
+    const size_t count = points.size();
+    std::vector<double> x(count), y(count);
+    for (size_t k = 0; k < count; ++k) x[k] = points[k].x, y[k] = points[k].y;
+    std::vector<double> sRobust(count), dRobust(count);
+    ck::hermiteSweepRootsRobust(count, side.frame, x.data(), y.data(), sRobust.data(), dRobust.data(),
+                                ck::kScalarReference);
+    for (const auto &w : ck::availableWidths()) {
+      std::vector<double> s(count), d(count), sr(count), dr(count);
+      const size_t fallbacks = ck::hermiteSweepRoots(count, side.frame, x.data(), y.data(), s.data(), d.data(), w.id);
+      ck::hermiteSweepRootsRobust(count, side.frame, x.data(), y.data(), sr.data(), dr.data(), w.id);
+      // The robust solver is width-independent, and the fast one agrees with it.
+      EXPECT_LE(relativeDifference(sr, sRobust), 1e-12) << w.name << " n=" << n;
+      size_t mismatches = 0;
+      for (size_t k = 0; k < count; ++k)
+        if (!(std::abs(s[k] - sRobust[k]) <= 1e-12 && std::abs(d[k] - dRobust[k]) <= 1e-12 * (1 + std::abs(dRobust[k]))))
+          if (++mismatches <= 5)
+            ADD_FAILURE() << w.name << " n=" << n << " at (" << x[k] << ", " << y[k] << "): s " << s[k] << " vs "
+                          << sRobust[k] << ", d " << d[k] << " vs " << dRobust[k];
+      EXPECT_EQ(mismatches, 0u) << w.name << " n=" << n;
+      // These points exercise the fallback: at least every point on the
+      // neighbouring sides (a root at an end of [0, 1]) and every corner.
+      EXPECT_GE(fallbacks, 4000u) << w.name << " n=" << n;
+      EXPECT_LT(fallbacks, count) << w.name << " n=" << n;
+    }
+  }
+}
+
+TEST(Kernels, SweepFastPathServesAlmostAllDomainPoints) {
+  // Inside a regular domain with n ≥ 4 the sweeplines of a side do not cross,
+  // so the root is unique and the fast path should certify nearly every
+  // point. n = 3 loses about 6 %: near the fold at the opposite corner
+  // several roots lie on [0, 1], or the quotient comes too close to zero.
+  std::mt19937_64 rng(23);
+  for (int n = 3; n <= 8; ++n) {
+    const RegularDomain domain(n);
+    const SideFrame side = sideZeroFrame(n);
+    std::vector<double> x, y;
+    std::uniform_real_distribution<double> u(-1, 1);
+    while (x.size() < 50000) {
+      const Vec2 q{u(rng), u(rng)};
+      bool inside = true;
+      for (int i = 0; i < n && inside; ++i) inside = domain.perpendicularDistance(i, q.x, q.y).v > 0;
+      if (!inside) continue;
+      const Vec2 r = q - side.p0;
+      x.push_back(dot(r, side.e) / dot(side.e, side.e));
+      y.push_back(cross(side.e, r) / dot(side.e, side.e));
+    }
+    std::vector<double> s(x.size()), d(x.size());
+    const size_t fallbacks = ck::hermiteSweepRoots(x.size(), side.frame, x.data(), y.data(), s.data(), d.data());
+    const double share = double(fallbacks) / double(x.size());
+    std::printf("n=%d: %.4f%% of domain points took the robust solver\n", n, 100 * share);
+    EXPECT_LT(share, n == 3 ? 0.08 : 0.002) << "n=" << n;
+  }
+}
+
+} // namespace

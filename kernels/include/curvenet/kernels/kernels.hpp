@@ -139,14 +139,29 @@ struct SweepFrame {
 
 /// (c) Sweepline roots for arbitrary points (x, y) of a side frame: the s ∈
 /// [0, 1] with F(s) = (x − s) w_y(s) − y w_x(s) = 0, w = a H(s) + b H(1 − s),
-/// H(s) = 2s³ − 3s² + 1 — a quartic. All roots on [0, 1] are isolated (the
-/// derivative cascade F'' → F' → F splits [0, 1] into monotone pieces, each
-/// refined by bisection and Newton); among those with d ≥ 0 the
+/// H(s) = 2s³ − 3s² + 1 — a quartic. Among the roots on [0, 1] with d ≥ 0 the
 /// orientation-preserving one nearest the radial parameter wins (the rule of
 /// the engine's scalar solver); points on no sweepline get clamp(x, 0, 1).
 /// Writes s and the distance parameter d with (x, y) = (s, 0) + d w(s).
-void hermiteSweepRoots(std::size_t count, const SweepFrame &frame, const double *x, const double *y, double *s,
-                       double *d, std::int64_t width = kBestWidth);
+///
+/// Two solvers give one result (to ~1e-13): a fast one, Newton from the
+/// radial parameter with a per-point certificate that the root found is the
+/// only one on [0, 1] and is the selection (deflation, then the sign of the
+/// cubic quotient's Bernstein coefficients); the points it cannot certify —
+/// near the fold of a triangle's sweeplines, on the neighbouring sides, at
+/// corners, outside the domain — are gathered and solved by the robust one
+/// (hermiteSweepRootsRobust). Cost: inside a regular domain of n ≥ 4 sides
+/// almost every point takes the fast path, about 15 polynomial evaluations.
+/// Returns how many points needed the robust solver.
+std::size_t hermiteSweepRoots(std::size_t count, const SweepFrame &frame, const double *x, const double *y, double *s,
+                              double *d, std::int64_t width = kBestWidth);
+
+/// The robust solver alone, for checks and comparisons: every root on
+/// [0, 1] isolated by the derivative cascade F'' → F' → F (monotone pieces,
+/// each bisected to the last bit), then the selection rule above. About 15×
+/// the fast path's cost; same arguments and result as hermiteSweepRoots.
+void hermiteSweepRootsRobust(std::size_t count, const SweepFrame &frame, const double *x, const double *y, double *s,
+                             double *d, std::int64_t width = kBestWidth);
 
 } // namespace kernels
 } // namespace v1
