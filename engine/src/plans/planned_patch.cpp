@@ -188,17 +188,25 @@ void Patch::evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t fir
   const bool g2 = options_.scheme == Scheme::GregoryG2;
   const int dims = g2 ? 9 : 6;
   thread_local Scratch scratch;
-  scratch.reset(count, static_cast<std::size_t>(n) * dims);
+  scratch.reset(count, static_cast<std::size_t>(n) * (dims + 1));
   kernels::GregorySamples in;
   in.sides = n, in.parabolic = g2;
   for (int i = 0; i < n; ++i) {
-    // The plan's side parameters serve as table parameters as they are:
-    // they lie in [0, 1], and near a segment break the table's side of it
-    // differs from the snapped pointwise evaluation by ~1e-12 of a slope.
+    // The plan's side parameters serve as table parameters as they are (they
+    // lie in [0, 1]), except on sides made of several segments: there the
+    // ribbon may jump at a break (T-nodes), and a parameter within a
+    // rounding error of it must take the break's left piece, as
+    // Surface::evaluate does (LinearRibbon::snap).
     in.s[i] = plan.sideValues(i) + first, in.blend[i] = plan.blendValues(i) + first;
+    const double *at = in.s[i];
+    if (ribbons_[i].pieces().size() > 1) {
+      double *snapped = scratch.take();
+      for (std::size_t k = 0; k < count; ++k) snapped[k] = ribbons_[i].snap(std::clamp(in.s[i][k], 0.0, 1.0));
+      at = snapped;
+    }
     double *jets[9];
     for (int c = 0; c < dims; ++c) jets[c] = scratch.take();
-    t.sides[i].evaluate(count, in.s[i], jets, nullptr);
+    t.sides[i].evaluate(count, at, jets, nullptr);
     for (int c = 0; c < 3; ++c) {
       in.P[i][c] = jets[c], in.T[i][c] = jets[3 + c];
       if (g2) in.C[i][c] = jets[6 + c];
