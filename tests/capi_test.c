@@ -72,6 +72,11 @@ static void loopAndEvaluate(void) {
   EXPECT(fabs(out[1].normal[0] * out[1].normal[0] + out[1].normal[1] * out[1].normal[1] +
               out[1].normal[2] * out[1].normal[2] - 1) < 1e-12);
 
+  /* Positions alone agree with the full evaluation. */
+  double xyz[6];
+  EXPECT(curvenet_model_evaluate_positions(model, 0, uv, 2, xyz, NULL, &status) == CURVENET_OK);
+  EXPECT(distance(xyz, out[0].point) < 1e-12 && distance(xyz + 3, out[1].point) < 1e-12);
+
   /* Second order: the centre of a symmetric dome bends the same way in u and v. */
   const double centre[2] = {0, 0};
   curvenet_point2 second;

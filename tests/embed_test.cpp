@@ -119,6 +119,27 @@ TEST(Embed, PointsOutsideTheDomainAreReportedAndTheRestEvaluated) {
   EXPECT_EQ(model->evaluate(0, uv, tooFew).code, StatusCode::InvalidArgument);
 }
 
+TEST(Embed, PositionBatchesMatchFullEvaluation) {
+  for (Scheme scheme : {Scheme::GregoryG1, Scheme::CompositeRibbon, Scheme::GregoryG2}) {
+    auto model = Model::load("builtin:hemisphere-tjunction", {.scheme = scheme});
+    ASSERT_TRUE(model.ok()) << model.status().toString();
+    for (int face = 0; face < model->faceCount(); ++face) {
+      std::vector<Vec2> uv = domainPoints(*model, face, 3000, face + 5);
+      uv.push_back(*model->domainCorner(face, 1) * 1.5); // outside: NaN and OutOfDomain
+      std::vector<Vec3> serial(uv.size()), parallel(uv.size());
+      EXPECT_EQ(model->evaluatePositions(face, uv, serial, {.threads = 1}).code, StatusCode::OutOfDomain);
+      EXPECT_EQ(model->evaluatePositions(face, uv, parallel, {.threads = 0, .parallelThreshold = 1}).code,
+                StatusCode::OutOfDomain);
+      EXPECT_TRUE(std::isnan(serial.back().x) && std::isnan(parallel.back().z));
+      for (std::size_t k = 0; k + 1 < uv.size(); ++k) {
+        ASSERT_TRUE(sameBits(serial[k], parallel[k])) << k;
+        const Vec3 full = model->evaluate(face, uv[k])->point;
+        ASSERT_LE(norm(serial[k] - full), 1e-12 * (1 + norm(full))) << schemeName(scheme) << " face " << face;
+      }
+    }
+  }
+}
+
 TEST(Embed, BadNetworksComeBackAsStatusNotExceptions) {
   // A loop that does not close: the last curve ends away from the first start.
   std::vector<BSplineCurve> open = pentagonLoop(0.3);

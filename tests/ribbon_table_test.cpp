@@ -106,3 +106,38 @@ TEST(PlannedPositions, MatchPointwiseEvaluationOnEveryBuiltin) {
     }
   }
 }
+
+TEST(BatchPositions, MatchPointwiseEvaluationAtRandomDomainPoints) {
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (const BuiltinInfo &info : builtinNetworks()) {
+    const Network network = Network::build(builtinNetwork(info.name));
+    for (SurfaceOptions o : {SurfaceOptions{Scheme::GregoryG1, Sweepline::Radial},
+                             SurfaceOptions{Scheme::GregoryG1, Sweepline::Hermite},
+                             SurfaceOptions{Scheme::GregoryG2, Sweepline::Hermite}}) {
+      const Surface surface = Surface::build(network, o);
+      BoundingBox box;
+      for (const Vertex &v : network.vertices()) box.add(v.position);
+      double worst = 0;
+      for (int f = 0; f < surface.faceCount(); ++f) {
+        const Patch &patch = *SurfaceAccess::patch(surface, f);
+        const int n = surface.domainSides(f);
+        // Uniform points of the fan triangles (centre, corner j, corner j + 1), the centre itself first.
+        std::vector<double> u{0.0}, v{0.0};
+        for (int k = 0; k < 600; ++k) {
+          const int j = static_cast<int>(unit(rng) * n) % n;
+          double a = unit(rng), b = unit(rng);
+          if (a + b > 1) a = 1 - a, b = 1 - b;
+          const Vec2 p = surface.domainCorner(f, j) * a + surface.domainCorner(f, j + 1) * b;
+          u.push_back(p.x), v.push_back(p.y);
+        }
+        std::vector<double> x(u.size()), y(u.size()), z(u.size());
+        double *out[3] = {x.data(), y.data(), z.data()};
+        patch.evaluatePositions(u.size(), u.data(), v.data(), out);
+        for (std::size_t k = 0; k < u.size(); ++k)
+          worst = std::max(worst, norm(Vec3{x[k], y[k], z[k]} - patch.evaluate(u[k], v[k]).v));
+      }
+      EXPECT_LE(worst, 1e-12 * box.diagonal()) << info.name << " " << schemeName(o.scheme);
+    }
+  }
+}

@@ -131,9 +131,11 @@ void Accumulate(std::size_t count, const AccumulateArgs &args, bool reference) {
 /// The interval of s (see PolynomialTable): its grid cell's first, then at
 /// most `steps` forward moves, branch-free (the grid is fine enough).
 HWY_INLINE std::size_t tableInterval(const ck::PolynomialTable &tb, double s) {
+  // Out of [0, 1] (or NaN) clamps to the end cells before any conversion.
   const double scaled = s * static_cast<double>(tb.cells);
-  std::size_t cell = scaled <= 0 ? 0 : static_cast<std::size_t>(scaled);
-  cell = cell < tb.cells ? cell : tb.cells - 1;
+  const std::size_t cell = !(scaled > 0) ? 0
+                           : scaled < static_cast<double>(tb.cells) ? static_cast<std::size_t>(scaled)
+                                                                    : tb.cells - 1;
   std::size_t j = tb.cellFirst[cell];
   for (int q = 0; q < tb.steps; ++q) j += (j + 1 < tb.intervals) & (tb.ends[j] < s);
   return j;

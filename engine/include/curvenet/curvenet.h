@@ -222,6 +222,14 @@ curvenet_status_code curvenet_model_evaluate_second_order(const curvenet_model *
                                                           const curvenet_batch_options *batch,
                                                           curvenet_status *status);
 
+/* Positions alone: xyz[3k .. 3k+2] = face `face` at uv[2k], uv[2k+1]. The
+ * fast path for many points (batched sweepline roots, ribbon tables, SIMD
+ * kernels for the Gregory schemes; the first call on a face builds its
+ * tables, about 1 ms). Outside points and status as curvenet_model_evaluate. */
+curvenet_status_code curvenet_model_evaluate_positions(const curvenet_model *model, int face, const double *uv,
+                                                       size_t count, double *xyz, const curvenet_batch_options *batch,
+                                                       curvenet_status *status);
+
 /* ---- Tessellation ------------------------------------------------------ */
 
 /* Tessellates the whole network (face = CURVENET_ALL_FACES; one watertight

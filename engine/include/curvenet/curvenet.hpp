@@ -259,6 +259,14 @@ public:
   Status evaluate(int face, std::span<const Vec2> uv, std::span<SurfacePoint> out,
                   const BatchOptions &batch = {}) const;
 
+  /// Positions alone of a batch (out.size() == uv.size()): the fast path
+  /// for many points (Surface::evaluatePositions — batched sweepline roots,
+  /// ribbon tables and SIMD kernels for the Gregory schemes; the first call
+  /// on a face builds its tables, ~1 ms). Outside points and the status as
+  /// for evaluate(); identical output for any thread count.
+  Status evaluatePositions(int face, std::span<const Vec2> uv, std::span<Vec3> out,
+                           const BatchOptions &batch = {}) const;
+
   /// With second derivatives (see Surface::evaluateSecondOrder: exact for
   /// gregory-g2, 9 first-order evaluations with step `batch.step` otherwise).
   Result<SurfacePoint2> evaluateSecondOrder(int face, const Vec2 &uv, const BatchOptions &batch = {}) const;

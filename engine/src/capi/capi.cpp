@@ -147,7 +147,12 @@ curvenet_status_code adopt(Result<Model> model, curvenet_model **out, curvenet_s
 
 /// Evaluates in chunks: the C arrays are converted to Vec2 / SurfacePoint
 /// through buffers of bounded size, each chunk evaluated as one facade batch
-/// (first or second order by the point type).
+/// (first or second order, or positions alone, by the point type).
+template <class Point, class CPoint> void storePoint(const Point &p, CPoint *out, std::size_t i) { fromPoint(p, out[i]); }
+inline void storePoint(const Vec3 &p, double *out, std::size_t i) {
+  out[3 * i] = p.x, out[3 * i + 1] = p.y, out[3 * i + 2] = p.z;
+}
+
 template <class Point, class CPoint>
 curvenet_status_code evaluateChunks(const curvenet_model *model, int face, const double *uv, std::size_t count,
                                     CPoint *out, const curvenet_batch_options *batch, curvenet_status *status) {
@@ -170,6 +175,8 @@ curvenet_status_code evaluateChunks(const curvenet_model *model, int face, const
     Status s;
     if constexpr (std::is_same_v<Point, SurfacePoint2>)
       s = model->model.evaluateSecondOrder(face, chunkIn, chunkOut, options);
+    else if constexpr (std::is_same_v<Point, Vec3>)
+      s = model->model.evaluatePositions(face, chunkIn, chunkOut, options);
     else
       s = model->model.evaluate(face, chunkIn, chunkOut, options);
     if (s.code != StatusCode::Ok && s.code != StatusCode::OutOfDomain) return report(s, status);
@@ -180,7 +187,7 @@ curvenet_status_code evaluateChunks(const curvenet_model *model, int face, const
       first.element = "point " + std::to_string(begin + local);
       first.message = "lies outside the domain of face " + std::to_string(face) + "; such points are set to NaN";
     }
-    for (std::size_t k = 0; k < n; ++k) fromPoint(result[k], out[begin + k]);
+    for (std::size_t k = 0; k < n; ++k) storePoint(result[k], out, begin + k);
     if (count == 0) break;
   }
   return report(first, status);
@@ -303,6 +310,12 @@ curvenet_status_code curvenet_model_evaluate_second_order(const curvenet_model *
                                                           const curvenet_batch_options *batch,
                                                           curvenet_status *status) {
   return guarded(status, [&] { return evaluateChunks<SurfacePoint2>(model, face, uv, count, out, batch, status); });
+}
+
+curvenet_status_code curvenet_model_evaluate_positions(const curvenet_model *model, int face, const double *uv,
+                                                       size_t count, double *xyz, const curvenet_batch_options *batch,
+                                                       curvenet_status *status) {
+  return guarded(status, [&] { return evaluateChunks<Vec3>(model, face, uv, count, xyz, batch, status); });
 }
 
 curvenet_status_code curvenet_model_tessellate(curvenet_model *model, int face, int resolution, int threads,

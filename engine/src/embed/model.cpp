@@ -225,6 +225,19 @@ struct Model::Impl {
   template <class Point, class One>
   Status batch(int face, std::span<const Vec2> uv, std::span<Point> out, const BatchOptions &options,
                One &&one) const {
+    return batchRanges(face, uv, out, options,
+                       [&](const Surface &surface, const DomainPolygon &polygon, std::size_t begin, std::size_t end) {
+                         for (std::size_t k = begin; k < end; ++k)
+                           out[k] = polygon.contains(uv[k]) ? one(surface, uv[k]) : nanPoint<Point>();
+                       });
+  }
+
+  /// The batch frame: argument checks, the serial/parallel split into
+  /// ranges evaluated by range(surface, polygon, begin, end), and the
+  /// out-of-domain status.
+  template <class Point, class Range>
+  Status batchRanges(int face, std::span<const Vec2> uv, std::span<Point> out, const BatchOptions &options,
+                     Range &&range) const {
     if (!validFace(face)) return failure(StatusCode::InvalidArgument, faceName(face), "no such face");
     if (uv.size() != out.size())
       return failure(StatusCode::InvalidArgument, "output",
@@ -232,21 +245,18 @@ struct Model::Impl {
     if (options.threads < 0) return failure(StatusCode::InvalidArgument, "threads", "must be ≥ 0");
     const Surface &surface = surfaceOf(face);
     const DomainPolygon polygon(surface, face);
-    auto range = [&](std::size_t begin, std::size_t end) {
-      for (std::size_t k = begin; k < end; ++k)
-        out[k] = polygon.contains(uv[k]) ? one(surface, uv[k]) : nanPoint<Point>();
-    };
     const std::size_t n = uv.size();
     const bool serial = options.threads == 1 || (options.threads == 0 && n < options.parallelThreshold);
     if (serial) {
-      range(0, n);
+      range(surface, polygon, 0, n);
     } else {
       // Each point is written by one task only, so the output is the same for
       // any thread count; the grain keeps task overhead below 1%.
       tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
       arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024),
-                          [&](const tbb::blocked_range<std::size_t> &r) { range(r.begin(), r.end()); });
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t> &r) {
+          range(surface, polygon, r.begin(), r.end());
+        });
       });
     }
     std::size_t outside = 0, first = n;
@@ -354,6 +364,19 @@ Status Model::evaluate(int face, std::span<const Vec2> uv, std::span<SurfacePoin
   return guarded<Status>([&] {
     return impl_->batch(face, uv, out, options,
                         [face](const Surface &s, const Vec2 &p) { return s.evaluate(face, p); });
+  });
+}
+
+Status Model::evaluatePositions(int face, std::span<const Vec2> uv, std::span<Vec3> out,
+                                const BatchOptions &options) const {
+  return guarded<Status>([&] {
+    return impl_->batchRanges(
+        face, uv, out, options,
+        [&](const Surface &surface, const DomainPolygon &polygon, std::size_t begin, std::size_t end) {
+          surface.evaluatePositions(face, uv.subspan(begin, end - begin), out.subspan(begin, end - begin));
+          for (std::size_t k = begin; k < end; ++k)
+            if (!polygon.contains(uv[k])) out[k] = Vec3{NAN, NAN, NAN};
+        });
   });
 }
 

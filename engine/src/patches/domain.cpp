@@ -73,6 +73,20 @@ Dual RegularDomain::radialSideParameter(int i, Dual u, Dual v) const {
   return Dual(apex.x) - Dual(apex.y) * (x - apex.x) / (y - apex.y);
 }
 
+kernels::SweepFrame RegularDomain::sweepFrame(int i) const {
+  const Vec2 e = corner(i + 1) - corner(i);
+  const Vec2 a = inFrame(e, corner(i - 1) - corner(i)), b = inFrame(e, corner(i + 2) - corner(i + 1));
+  kernels::SweepFrame f{a.x, a.y, b.x, b.y};
+  const double det = cross(a, b);
+  if (std::abs(det) < 1e-12) {
+    f.parallel = true;
+  } else {
+    const double alpha = cross(Vec2{1, 0}, b) / det;
+    f.apexX = a.x * alpha, f.apexY = a.y * alpha;
+  }
+  return f;
+}
+
 RegularDomain::SweepParameters RegularDomain::hermiteSweep(int i, Dual u, Dual v, bool quintic) const {
   Dual x, y;
   sideFrame(i, u, v, x, y);

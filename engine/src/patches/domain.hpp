@@ -6,6 +6,8 @@
 // Duals so that patches get exact derivatives.
 #pragma once
 
+#include "curvenet/kernels/kernels.hpp"
+
 #include <array>
 #include <span>
 #include <vector>
@@ -41,6 +43,9 @@ public:
     Dual s, d;
   };
   SweepParameters hermiteSweep(int i, Dual u, Dual v, bool quintic = false) const;
+  /// Side i's sweep constants for the batched kernels (kernels::SweepFrame):
+  /// the neighbouring sides' directions in its frame and the radial apex.
+  kernels::SweepFrame sweepFrame(int i) const;
   /// hermiteSweep's result for a root found elsewhere (the batched solver of
   /// curvenet::kernels): s_i = root with its derivatives, and d_i.
   SweepParameters hermiteSweepFromRoot(int i, Dual u, Dual v, double root, bool quintic = false) const;

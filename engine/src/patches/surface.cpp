@@ -441,6 +441,25 @@ Vec2 Surface::domainPointOnSegment(int face, int segment, double u) const {
   throw InputError("", "face " + std::to_string(face), "does not use segment " + std::to_string(segment));
 }
 
+void Surface::evaluatePositions(int face, std::span<const Vec2> uv, std::span<Vec3> out) const {
+  CURVENET_CHECK(out.size() >= uv.size(), "evaluatePositions: output shorter than the input");
+  if (impl_->bezier) {
+    for (std::size_t k = 0; k < uv.size(); ++k) out[k] = evaluate(face, uv[k]).point;
+    return;
+  }
+  const Patch &patch = impl_->patches.at(face);
+  constexpr std::size_t kChunk = 1024;
+  thread_local std::vector<double> scratch;
+  scratch.resize(5 * kChunk);
+  double *u = scratch.data(), *v = u + kChunk, *xyz[3] = {v + kChunk, v + 2 * kChunk, v + 3 * kChunk};
+  for (std::size_t first = 0; first < uv.size(); first += kChunk) {
+    const std::size_t m = std::min(kChunk, uv.size() - first);
+    for (std::size_t k = 0; k < m; ++k) u[k] = uv[first + k].x, v[k] = uv[first + k].y;
+    patch.evaluatePositions(m, u, v, xyz);
+    for (std::size_t k = 0; k < m; ++k) out[first + k] = Vec3{xyz[0][k], xyz[1][k], xyz[2][k]} + impl_->origin;
+  }
+}
+
 SurfacePoint Surface::evaluate(int face, const Vec2 &uv) const {
   if (impl_->bezier) {
     // Square domain → (u, v) ∈ [0, 1]² (see the header); d(u,v)/d(x,y) = 1/width.

@@ -31,22 +31,6 @@ PlanKey planKey(const SurfaceOptions &options, int sides, int resolution) {
 
 namespace {
 constexpr std::size_t kGrain = 1024; // samples per task when building
-
-/// The cubic Hermite sweep constants of side 0 for the batched root solver.
-kernels::SweepFrame sideZeroFrame(const RegularDomain &domain) {
-  const Vec2 p0 = domain.corner(0), e = domain.corner(1) - p0;
-  auto inFrame = [&](const Vec2 &v) { return Vec2{dot(v, e) / dot(e, e), cross(e, v) / dot(e, e)}; };
-  const Vec2 a = inFrame(domain.corner(-1) - p0), b = inFrame(domain.corner(2) - domain.corner(1));
-  kernels::SweepFrame f{a.x, a.y, b.x, b.y};
-  const double det = cross(a, b);
-  if (std::abs(det) < 1e-12) {
-    f.parallel = true;
-  } else {
-    const double alpha = cross(Vec2{1, 0}, b) / det;
-    f.apexX = a.x * alpha, f.apexY = a.y * alpha;
-  }
-  return f;
-}
 } // namespace
 
 EvaluationPlan::EvaluationPlan(const PlanKey &key) : key_(key) {
@@ -101,7 +85,7 @@ EvaluationPlan::EvaluationPlan(const PlanKey &key) : key_(key) {
   s_.resize(perSide_ ? n * count : count), d_.resize(count), b_.resize(count);
   const bool cr = key.scheme == Scheme::CompositeRibbon;
   const bool cubicHermite = !cr && key.sweepline == Sweepline::Hermite && !perSide_;
-  const kernels::SweepFrame frame = sideZeroFrame(domain);
+  const kernels::SweepFrame frame = domain.sweepFrame(0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kGrain), [&](const tbb::blocked_range<std::size_t> &range) {
     // Side 0's cubic Hermite roots for the whole block in one batched solve.
     std::vector<double> x, y, roots, dist;

@@ -184,6 +184,14 @@ void Patch::evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t fir
       out[0][k] = values[k].v.x, out[1][k] = values[k].v.y, out[2][k] = values[k].v.z;
     return;
   }
+  std::array<const double *, kMaxSides> side, blend;
+  for (int i = 0; i < n; ++i) side[i] = plan.sideValues(i) + first, blend[i] = plan.blendValues(i) + first;
+  gregoryPositionsFrom(count, side.data(), blend.data(), out);
+}
+
+void Patch::gregoryPositionsFrom(std::size_t count, const double *const *sideValues, const double *const *blendValues,
+                                 double *const out[3]) const {
+  const int n = domain_.sides();
   const PatchTables &t = tables();
   const bool g2 = options_.scheme == Scheme::GregoryG2;
   const int dims = g2 ? 9 : 6;
@@ -192,12 +200,12 @@ void Patch::evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t fir
   kernels::GregorySamples in;
   in.sides = n, in.parabolic = g2;
   for (int i = 0; i < n; ++i) {
-    // The plan's side parameters serve as table parameters as they are (they
-    // lie in [0, 1]), except on sides made of several segments: there the
+    // The side parameters serve as table parameters as they are (they lie
+    // in [0, 1]), except on sides made of several segments: there the
     // ribbon may jump at a break (T-nodes), and a parameter within a
     // rounding error of it must take the break's left piece, as
     // Surface::evaluate does (LinearRibbon::snap).
-    in.s[i] = plan.sideValues(i) + first, in.blend[i] = plan.blendValues(i) + first;
+    in.s[i] = sideValues[i], in.blend[i] = blendValues[i];
     const double *at = in.s[i];
     if (ribbons_[i].pieces().size() > 1) {
       double *snapped = scratch.take();
@@ -213,6 +221,82 @@ void Patch::evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t fir
     }
   }
   kernels::gregoryPositions(count, in, t.corners.data(), out);
+}
+
+void Patch::evaluatePositions(std::size_t count, const double *u, const double *v, double *const out[3]) const {
+  const int n = domain_.sides();
+  const bool gregory = options_.scheme == Scheme::GregoryG1 || options_.scheme == Scheme::GregoryG2;
+  if (!gregory || options_.sweepline == Sweepline::QuinticHermite) {
+    for (std::size_t k = 0; k < count; ++k) {
+      const Vec3 p = evaluate(u[k], v[k]).v;
+      out[0][k] = p.x, out[1][k] = p.y, out[2][k] = p.z;
+    }
+    return;
+  }
+  // Chunks small enough for the per-thread scratch to stay in the L2 cache.
+  constexpr std::size_t kChunk = 512;
+  const bool g2 = options_.scheme == Scheme::GregoryG2;
+  const bool radial = options_.sweepline == Sweepline::Radial;
+  struct Frames {
+    std::size_t count = 0;
+    std::vector<double> data;
+    double *at(std::size_t array) { return data.data() + array * count; }
+  };
+  thread_local Frames scratch;
+  for (std::size_t first = 0; first < count; first += kChunk) {
+    const std::size_t m = std::min(kChunk, count - first);
+    scratch.count = m;
+    scratch.data.resize(static_cast<std::size_t>(4 * n + 2) * m);
+    std::array<const double *, kMaxSides> side, blend;
+    double *x = scratch.at(4 * n), *y = scratch.at(4 * n + 1);
+    for (int i = 0; i < n; ++i) {
+      // Side i's frame: the side from (0, 0) to (1, 0), the domain at y > 0;
+      // y is the perpendicular distance Δ_i of the blends.
+      const Vec2 p = domain_.corner(i), e = domain_.corner(i + 1) - p;
+      const double inverse = 1 / dot(e, e);
+      double *s = scratch.at(i), *distance = scratch.at(n + i), *power = scratch.at(2 * n + i);
+      for (std::size_t k = 0; k < m; ++k) {
+        const double qx = u[first + k] - p.x, qy = v[first + k] - p.y;
+        x[k] = (qx * e.x + qy * e.y) * inverse, y[k] = (qy * e.x - qx * e.y) * inverse;
+        distance[k] = y[k];
+        power[k] = g2 ? y[k] * y[k] * y[k] : y[k] * y[k];
+      }
+      const kernels::SweepFrame frame = domain_.sweepFrame(i);
+      if (!radial) {
+        double *unused = scratch.at(3 * n + i);
+        kernels::hermiteSweepRoots(m, frame, x, y, s, unused);
+      } else if (frame.parallel) {
+        for (std::size_t k = 0; k < m; ++k) s[k] = x[k] - y[k] * (frame.ax / frame.ay);
+      } else {
+        for (std::size_t k = 0; k < m; ++k) s[k] = frame.apexX - frame.apexY * (x[k] - frame.apexX) / (y[k] - frame.apexY);
+      }
+      side[i] = s;
+    }
+    // Corner blends B_{i,i−1} = ∏_{j∉{i,i−1}} Δ_j^m / Σ_k ∏_{j∉{k,k−1}} Δ_j^m, in
+    // the product order of RegularDomain::cornerProducts.
+    std::array<double *, kMaxSides> product;
+    for (int i = 0; i < n; ++i) product[i] = scratch.at(3 * n + i);
+    for (int i = 0; i < n; ++i) {
+      double *b = product[i];
+      std::fill(b, b + m, 1.0);
+      for (int j = 0; j < n; ++j) {
+        if (j == i || j == domain_.wrap(i - 1)) continue;
+        const double *power = scratch.at(2 * n + j);
+        for (std::size_t k = 0; k < m; ++k) b[k] *= power[k];
+      }
+    }
+    double *total = x; // the frame coordinates are no longer needed
+    std::fill(total, total + m, 0.0);
+    for (int i = 0; i < n; ++i)
+      for (std::size_t k = 0; k < m; ++k) total[k] += product[i][k];
+    for (std::size_t k = 0; k < m; ++k) total[k] = 1 / total[k];
+    for (int i = 0; i < n; ++i) {
+      for (std::size_t k = 0; k < m; ++k) product[i][k] *= total[k];
+      blend[i] = product[i];
+    }
+    double *const to[3] = {out[0] + first, out[1] + first, out[2] + first};
+    gregoryPositionsFrom(m, side.data(), blend.data(), to);
+  }
 }
 
 void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::size_t count, DualVec3 *out) const {

@@ -60,9 +60,10 @@ public:
 
 private:
   std::uint32_t interval(double s) const {
-    const double scaled = s * static_cast<double>(cells_);
-    std::size_t cell = scaled <= 0 ? 0 : static_cast<std::size_t>(scaled);
-    if (cell >= cells_) cell = cells_ - 1;
+    const double scaled = s * static_cast<double>(cells_); // NaN or out of [0, 1]: the end cells
+    const std::size_t cell = !(scaled > 0) ? 0
+                             : scaled < static_cast<double>(cells_) ? static_cast<std::size_t>(scaled)
+                                                                    : cells_ - 1;
     std::uint32_t i = cellFirst_[cell];
     for (int q = 0; q < steps_; ++q) i += (i + 1 < starts_.size()) & (ends_[i] < s);
     return i;
