@@ -125,13 +125,14 @@ TEST(Embed, PositionBatchesMatchFullEvaluation) {
     ASSERT_TRUE(model.ok()) << model.status().toString();
     for (int face = 0; face < model->faceCount(); ++face) {
       std::vector<Vec2> uv = domainPoints(*model, face, 3000, face + 5);
+      uv.push_back({NAN, 0.1});                            // not a point: NaN and OutOfDomain
       uv.push_back(*model->domainCorner(face, 1) * 1.5); // outside: NaN and OutOfDomain
       std::vector<Vec3> serial(uv.size()), parallel(uv.size());
       EXPECT_EQ(model->evaluatePositions(face, uv, serial, {.threads = 1}).code, StatusCode::OutOfDomain);
       EXPECT_EQ(model->evaluatePositions(face, uv, parallel, {.threads = 0, .parallelThreshold = 1}).code,
                 StatusCode::OutOfDomain);
-      EXPECT_TRUE(std::isnan(serial.back().x) && std::isnan(parallel.back().z));
-      for (std::size_t k = 0; k + 1 < uv.size(); ++k) {
+      EXPECT_TRUE(std::isnan(serial.back().x) && std::isnan(parallel.back().z) && std::isnan(serial[uv.size() - 2].y));
+      for (std::size_t k = 0; k + 2 < uv.size(); ++k) {
         ASSERT_TRUE(sameBits(serial[k], parallel[k])) << k;
         const Vec3 full = model->evaluate(face, uv[k])->point;
         ASSERT_LE(norm(serial[k] - full), 1e-12 * (1 + norm(full))) << schemeName(scheme) << " face " << face;

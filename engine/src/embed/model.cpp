@@ -55,19 +55,19 @@ std::string faceName(int face) { return "face " + std::to_string(face); }
 /// inside test; n ≤ 8 sides.
 struct DomainPolygon {
   std::array<Vec2, 9> corners{};
+  std::array<double, 8> tolerance{}; ///< −1e-9 |edge| per side, precomputed
   int sides = 0;
 
   DomainPolygon(const Surface &surface, int face) : sides(surface.domainSides(face)) {
     for (int i = 0; i <= sides; ++i) corners[i] = surface.domainCorner(face, i);
+    for (int i = 0; i < sides; ++i) tolerance[i] = -1e-9 * norm(corners[i + 1] - corners[i]);
   }
   /// Inside or on the boundary, with a tolerance of 1e-9 of the circumradius
   /// so that points computed on a side (e.g. by interpolating corners) pass.
   bool contains(const Vec2 &p) const {
     if (!std::isfinite(p.x) || !std::isfinite(p.y)) return false;
-    for (int i = 0; i < sides; ++i) {
-      const Vec2 edge = corners[i + 1] - corners[i];
-      if (cross(edge, p - corners[i]) < -1e-9 * norm(edge)) return false;
-    }
+    for (int i = 0; i < sides; ++i)
+      if (cross(corners[i + 1] - corners[i], p - corners[i]) < tolerance[i]) return false;
     return true;
   }
 };
@@ -76,10 +76,14 @@ template <class Point>
 Point nanPoint() {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const Vec3 v{nan, nan, nan};
-  Point p;
-  p.point = p.du = p.dv = p.normal = v;
-  if constexpr (std::is_same_v<Point, SurfacePoint2>) p.duu = p.duv = p.dvv = v;
-  return p;
+  if constexpr (std::is_same_v<Point, Vec3>) {
+    return v;
+  } else {
+    Point p;
+    p.point = p.du = p.dv = p.normal = v;
+    if constexpr (std::is_same_v<Point, SurfacePoint2>) p.duu = p.duv = p.dvv = v;
+    return p;
+  }
 }
 
 } // namespace
@@ -259,9 +263,12 @@ struct Model::Impl {
         });
       });
     }
+    // Points outside the domain: NaN (whatever the range evaluation left
+    // there) and the status.
     std::size_t outside = 0, first = n;
     for (std::size_t k = 0; k < n; ++k)
       if (!polygon.contains(uv[k])) {
+        out[k] = nanPoint<Point>();
         ++outside;
         first = std::min(first, k);
       }
@@ -372,10 +379,10 @@ Status Model::evaluatePositions(int face, std::span<const Vec2> uv, std::span<Ve
   return guarded<Status>([&] {
     return impl_->batchRanges(
         face, uv, out, options,
-        [&](const Surface &surface, const DomainPolygon &polygon, std::size_t begin, std::size_t end) {
+        [&](const Surface &surface, const DomainPolygon &, std::size_t begin, std::size_t end) {
+          // Outside points are evaluated too (finite or not, never a fault)
+          // and set to NaN by batchRanges.
           surface.evaluatePositions(face, uv.subspan(begin, end - begin), out.subspan(begin, end - begin));
-          for (std::size_t k = begin; k < end; ++k)
-            if (!polygon.contains(uv[k])) out[k] = Vec3{NAN, NAN, NAN};
         });
   });
 }

@@ -191,7 +191,19 @@ void Patch::evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t fir
 
 void Patch::gregoryPositionsFrom(std::size_t count, const double *const *sideValues, const double *const *blendValues,
                                  double *const out[3]) const {
+  // Blocks whose ribbon values (up to 9 arrays per side) stay in the L1
+  // cache between the table pass and the kernel pass.
+  constexpr std::size_t kBlock = 64;
   const int n = domain_.sides();
+  if (count > kBlock) {
+    std::array<const double *, kMaxSides> side, blend;
+    for (std::size_t first = 0; first < count; first += kBlock) {
+      for (int i = 0; i < n; ++i) side[i] = sideValues[i] + first, blend[i] = blendValues[i] + first;
+      double *const to[3] = {out[0] + first, out[1] + first, out[2] + first};
+      gregoryPositionsFrom(std::min(kBlock, count - first), side.data(), blend.data(), to);
+    }
+    return;
+  }
   const PatchTables &t = tables();
   const bool g2 = options_.scheme == Scheme::GregoryG2;
   const int dims = g2 ? 9 : 6;
