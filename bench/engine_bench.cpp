@@ -1,6 +1,11 @@
 // Engine phases and kernels. Names say what runs:
 //   Tessellate/<scheme>/<model>/r<resolution>/<cold|warm>/t<threads>
-//   PlanBuild/<scheme>/n<sides>/r<resolution>
+//   Evaluate/<scheme>/<model>/r<resolution>/<cold|warm>/t<threads>
+//     (evaluateFaceInteriors: positions of the face-interior samples; cold =
+//     plan cache emptied and a freshly built surface, so plans and ribbon
+//     tables are built inside the timing)
+//   BatchPositions/<scheme>/<model>: Surface::evaluatePositions at random
+//     domain points of face 0 (sweepline roots solved per point)
 //   Kernel<Name>/<width>
 // Each reports a points-per-second counter (items/s).
 #include <benchmark/benchmark.h>
@@ -8,6 +13,7 @@
 
 #include <cmath>
 #include <map>
+#include <optional>
 #include <random>
 
 #include "curvenet/builtins.hpp"
@@ -40,6 +46,48 @@ void tessellateBench(benchmark::State &state, Scheme scheme, std::string model, 
   }
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * points));
   state.counters["points"] = static_cast<double>(points);
+}
+
+void evaluateBench(benchmark::State &state, Scheme scheme, std::string model, int resolution, bool cold,
+                   int threads) {
+  const Network network = Network::build(builtinNetwork(model));
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+  std::optional<Surface> surface = Surface::build(network, {scheme});
+  std::size_t points = 0;
+  for (auto _ : state) {
+    if (cold) {
+      state.PauseTiming();
+      surface = Surface::build(network, {scheme});
+      clearEvaluationPlans();
+      state.ResumeTiming();
+    }
+    const std::vector<Vec3> p = evaluateFaceInteriors(*surface, {resolution, threads});
+    points = p.size();
+    benchmark::DoNotOptimize(p.data());
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * points));
+  state.counters["points"] = static_cast<double>(points);
+}
+
+void batchPositionsBench(benchmark::State &state, Scheme scheme, std::string model) {
+  const Surface &surface = surfaceFor(model, scheme);
+  const int n = surface.domainSides(0);
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<Vec2> uv(1 << 16);
+  for (Vec2 &p : uv) {
+    const int k = static_cast<int>(unit(rng) * n) % n;
+    double a = unit(rng), b = unit(rng);
+    if (a + b > 1) a = 1 - a, b = 1 - b;
+    p = surface.domainCorner(0, k) * a + surface.domainCorner(0, k + 1) * b;
+  }
+  std::vector<Vec3> out(uv.size());
+  surface.evaluatePositions(0, uv, out); // the face's ribbon tables
+  for (auto _ : state) {
+    surface.evaluatePositions(0, uv, out);
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * uv.size()));
 }
 
 void surfaceBuildBench(benchmark::State &state, Scheme scheme, std::string model) {
@@ -93,6 +141,50 @@ void kernelAccumulateBench(benchmark::State &state, std::int64_t width) {
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * kBatch));
 }
 
+/// The whole G² position kernel for a pentagon over random per-side data.
+void kernelGregoryBench(benchmark::State &state, std::int64_t width) {
+  constexpr int n = 5;
+  KernelData in(n * 11, kBatch), out(3, kBatch);
+  ck::GregorySamples samples;
+  samples.sides = n, samples.parabolic = true;
+  for (int i = 0; i < n; ++i) {
+    samples.s[i] = in.at(11 * i, kBatch), samples.blend[i] = in.at(11 * i + 1, kBatch);
+    for (int c = 0; c < 3; ++c)
+      samples.P[i][c] = in.at(11 * i + 2 + c, kBatch), samples.T[i][c] = in.at(11 * i + 5 + c, kBatch),
+      samples.C[i][c] = in.at(11 * i + 8 + c, kBatch);
+  }
+  std::vector<ck::GregoryCorner> corners(n);
+  for (auto &corner : corners)
+    for (auto &v : corner.v) v[0] = 0.3, v[1] = -0.2, v[2] = 0.1;
+  double *o[3] = {out.at(0, kBatch), out.at(1, kBatch), out.at(2, kBatch)};
+  for (auto _ : state) {
+    ck::gregoryPositions(kBatch, samples, corners.data(), o, width);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * kBatch));
+}
+
+/// Table evaluation, 9 coordinates (a G² ribbon: P, T, C), 256 intervals.
+void kernelTableBench(benchmark::State &state, std::int64_t width, bool slopes) {
+  constexpr std::size_t intervals = 256, dims = 9, padded = 12;
+  std::vector<double> starts(intervals), ends(intervals), inverse(intervals, double(intervals));
+  for (std::size_t j = 0; j < intervals; ++j) starts[j] = double(j) / intervals, ends[j] = double(j + 1) / intervals;
+  KernelData coefficients(intervals * 6, padded), in(1, kBatch), out(2 * dims, kBatch);
+  std::vector<std::uint32_t> first(4 * intervals);
+  for (std::size_t c = 0; c < first.size(); ++c) first[c] = static_cast<std::uint32_t>(c / 4);
+  ck::PolynomialTable table;
+  table.dims = dims, table.paddedDims = padded, table.steps = 1, table.intervals = intervals, table.cells = first.size();
+  table.starts = starts.data(), table.ends = ends.data(), table.inverseWidths = inverse.data();
+  table.coefficients = coefficients.data.data(), table.cellFirst = first.data();
+  double *values[dims], *derivatives[dims];
+  for (std::size_t d = 0; d < dims; ++d) values[d] = out.at(d, kBatch), derivatives[d] = out.at(dims + d, kBatch);
+  for (auto _ : state) {
+    ck::evaluateTable(kBatch, table, in.at(0, kBatch), values, slopes ? derivatives : nullptr, width);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * kBatch));
+}
+
 /// Side 0 of the regular pentagon, points (x, y) ∈ [0.05, 0.95] × [0.03, 0.57]
 /// of its frame, all inside the domain. robust: the fallback solver alone.
 void kernelSweepBench(benchmark::State &state, std::int64_t width, bool robust) {
@@ -129,6 +221,17 @@ int registerAll() {
                                        tessellateBench, scheme, std::string("pentagon"), r, cold, threads)
               ->Unit(benchmark::kMillisecond)
               ->UseRealTime();
+    for (bool cold : {true, false})
+      for (int threads : {1, 2})
+        benchmark::RegisterBenchmark(("Evaluate/" + std::string(name) + "/pentagon/r256/" + (cold ? "cold" : "warm") +
+                                      "/t" + std::to_string(threads))
+                                         .c_str(),
+                                     evaluateBench, scheme, std::string("pentagon"), 256, cold, threads)
+            ->Unit(benchmark::kMillisecond)
+            ->UseRealTime();
+    benchmark::RegisterBenchmark(("BatchPositions/" + std::string(name) + "/pentagon").c_str(), batchPositionsBench,
+                                 scheme, std::string("pentagon"))
+        ->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("SurfaceBuild/" + std::string(name) + "/ellipsoid-truncated-icosahedron").c_str(),
                                  surfaceBuildBench, scheme, std::string("ellipsoid-truncated-icosahedron"))
         ->Unit(benchmark::kMillisecond);
@@ -137,6 +240,9 @@ int registerAll() {
     const std::string suffix = "/" + w.name + "x" + std::to_string(w.lanes);
     benchmark::RegisterBenchmark(("KernelRibbonPoints" + suffix).c_str(), kernelRibbonBench, w.id);
     benchmark::RegisterBenchmark(("KernelAccumulate" + suffix).c_str(), kernelAccumulateBench, w.id);
+    benchmark::RegisterBenchmark(("KernelGregoryPositionsG2n5" + suffix).c_str(), kernelGregoryBench, w.id);
+    benchmark::RegisterBenchmark(("KernelTable9" + suffix).c_str(), kernelTableBench, w.id, false);
+    benchmark::RegisterBenchmark(("KernelTable9Slopes" + suffix).c_str(), kernelTableBench, w.id, true);
     benchmark::RegisterBenchmark(("KernelHermiteSweep" + suffix).c_str(), kernelSweepBench, w.id, false);
     benchmark::RegisterBenchmark(("KernelHermiteSweepRobust" + suffix).c_str(), kernelSweepBench, w.id, true);
   }
