@@ -17,6 +17,7 @@
 
 #include "curvenet/kernels/kernels.hpp"
 #include "patches/domain.hpp"
+#include "patches/patch.hpp"
 
 using namespace curvenet;
 namespace ck = curvenet::kernels;
@@ -489,3 +490,72 @@ TEST(Kernels, SweepFastPathServesAlmostAllDomainPoints) {
 }
 
 } // namespace
+
+TEST(Kernels, GregoryJetsAgreeAcrossWidthsAndWithDualArithmetic) {
+  // Reference: the engine's scalar correction patches (patch.hpp) and ribbon
+  // formula in Dual arithmetic, whose product and quotient rules are
+  // independent of the kernel's hand-derived derivatives.
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> unit(0.02, 0.98), u(-2, 2);
+  for (bool parabolic : {false, true})
+    for (int n : {3, 5, 8}) {
+      constexpr size_t count = 203;
+      Soa s(3 * n, count), blend(3 * n, count), jets(18 * n, count, &rng);
+      for (size_t a = 0; a < size_t(3 * n); ++a)
+        for (size_t k = 0; k < count; ++k) s[a][k] = a % 3 ? u(rng) : unit(rng), blend[a][k] = a % 3 ? u(rng) : unit(rng);
+      ck::GregoryJetSamples in;
+      in.values.sides = n, in.values.parabolic = parabolic;
+      for (int i = 0; i < n; ++i) {
+        in.values.s[i] = s[3 * i], in.sDu[i] = s[3 * i + 1], in.sDv[i] = s[3 * i + 2];
+        in.values.blend[i] = blend[3 * i], in.blendDu[i] = blend[3 * i + 1], in.blendDv[i] = blend[3 * i + 2];
+        for (int c = 0; c < 3; ++c) {
+          in.values.P[i][c] = jets[18 * i + c], in.values.T[i][c] = jets[18 * i + 3 + c], in.values.C[i][c] = jets[18 * i + 6 + c];
+          in.dP[i][c] = jets[18 * i + 9 + c], in.dT[i][c] = jets[18 * i + 12 + c], in.dC[i][c] = jets[18 * i + 15 + c];
+        }
+      }
+      std::vector<ck::GregoryCorner> corners(n);
+      for (auto &corner : corners)
+        for (auto &v : corner.v)
+          for (double &x : v) x = u(rng);
+      auto vec = [](const double *p) { return Vec3{p[0], p[1], p[2]}; };
+      std::vector<double> formula(9 * count);
+      for (size_t k = 0; k < count; ++k) {
+        auto at = [&](const double *const(&a)[3]) { return Vec3{a[0][k], a[1][k], a[2][k]}; };
+        DualVec3 sum{};
+        for (int i = 0; i < n; ++i) {
+          const int prev = (i + n - 1) % n;
+          const Dual si{s[3 * i][k], s[3 * i + 1][k], s[3 * i + 2][k]}, sp{s[3 * prev][k], s[3 * prev + 1][k], s[3 * prev + 2][k]};
+          const Dual t = Dual(1.0) - sp, b{blend[3 * i][k], blend[3 * i + 1][k], blend[3 * i + 2][k]};
+          auto ribbon = [&](int side, Dual sigma, Dual delta) {
+            DualVec3 r = DualVec3::along(at(in.values.P[side]), at(in.dP[side]), sigma) +
+                         delta * DualVec3::along(at(in.values.T[side]), at(in.dT[side]), sigma);
+            if (parabolic) r += (Dual(0.5) * delta * delta) * DualVec3::along(at(in.values.C[side]), at(in.dC[side]), sigma);
+            return r;
+          };
+          const auto &v = corners[i].v;
+          DualVec3 q;
+          if (parabolic) {
+            CornerData2 c{};
+            c.a[0][0] = vec(v[0]);
+            int slot = 1;
+            for (int p = 0; p <= 2; ++p)
+              for (int r = 0; r <= 2; ++r)
+                if (p || r) c.a[p][r] = vec(v[slot]), c.b[p][r] = vec(v[slot + 1]), slot += 2;
+            q = gregoryCorrection2(c, si, t);
+          } else {
+            const CornerData c{vec(v[0]), vec(v[1]), vec(v[3]), vec(v[5]), vec(v[2]), vec(v[4]), vec(v[6])};
+            q = gregoryCorrection(c, si, t, si, t);
+          }
+          sum += b * (ribbon(prev, sp, si) + ribbon(i, si, t) - q);
+        }
+        const Vec3 parts[3] = {sum.v, sum.du, sum.dv};
+        for (int p = 0; p < 3; ++p)
+          for (int c = 0; c < 3; ++c) formula[(3 * p + c) * count + k] = parts[p][c];
+      }
+      for (const auto &w : ck::availableWidths()) {
+        Soa out(9, count);
+        ck::gregoryJets(count, in, corners.data(), span9(out), w.id);
+        EXPECT_LE(relativeDifference(out.data, formula), 1e-12) << w.name << " n=" << n << (parabolic ? " G2" : " G1");
+      }
+    }
+}

@@ -44,6 +44,12 @@ struct GregoryArgs {
   double *const *out;
 };
 
+struct GregoryJetArgs {
+  const ck::GregoryJetSamples *in;
+  const ck::GregoryCorner *corners;
+  ck::DualVec3Span out;
+};
+
 struct SweepArgs {
   ck::SweepFrame frame;
   const double *x, *y;
@@ -305,6 +311,121 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t 
     for (int c = 0; c < 3; ++c) acc[c] = hn::MulAdd(blend, term[c], acc[c]);
   }
   for (int c = 0; c < 3; ++c) hn::StoreU(acc[c], d, a.out[c] + k);
+}
+
+/// A value with its two domain partials, in registers.
+template <class V> struct DualV {
+  V v, u, w; // value, ∂/∂u, ∂/∂v
+};
+
+template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size_t k, const GregoryJetArgs &a) {
+  using V = hn::Vec<D>;
+  const ck::GregoryJetSamples &in = *a.in;
+  const ck::GregorySamples &val = in.values;
+  const int n = val.sides;
+  const V one = hn::Set(d, 1.0), half = hn::Set(d, 0.5);
+  V acc[3][3]; // [value, du, dv][x, y, z]
+  for (auto &row : acc)
+    for (V &x : row) x = hn::Zero(d);
+  auto load = [&](const double *p) { return hn::LoadU(d, p + k); };
+  for (int i = 0; i < n; ++i) {
+    const int prev = i == 0 ? n - 1 : i - 1;
+    const DualV<V> s{load(val.s[i]), load(in.sDu[i]), load(in.sDv[i])};
+    const DualV<V> sp{load(val.s[prev]), load(in.sDu[prev]), load(in.sDv[prev])};
+    const DualV<V> t{hn::Sub(one, sp.v), hn::Neg(sp.u), hn::Neg(sp.w)};
+    const DualV<V> blend{load(val.blend[i]), load(in.blendDu[i]), load(in.blendDv[i])};
+    // I = R_{i−1}(σ = s_{i−1}, δ = s) + R_i(σ = s, δ = t) − Q; for R(σ, δ):
+    // value P + δT [+ ½δ²C], ∂ = σ' (P' + δT' [+ ½δ²C']) + δ' (T [+ δC]).
+    V term[3][3];
+    const V hs2 = hn::Mul(half, hn::Mul(s.v, s.v)), ht2 = hn::Mul(half, hn::Mul(t.v, t.v));
+    for (int c = 0; c < 3; ++c) {
+      V lv = hn::MulAdd(s.v, load(val.T[prev][c]), load(val.P[prev][c]));
+      V lslope = hn::MulAdd(s.v, load(in.dT[prev][c]), load(in.dP[prev][c]));
+      V lacross = load(val.T[prev][c]);
+      V rv = hn::MulAdd(t.v, load(val.T[i][c]), load(val.P[i][c]));
+      V rslope = hn::MulAdd(t.v, load(in.dT[i][c]), load(in.dP[i][c]));
+      V racross = load(val.T[i][c]);
+      if constexpr (Parabolic) {
+        const V lc = load(val.C[prev][c]), rc = load(val.C[i][c]);
+        lv = hn::MulAdd(hs2, lc, lv), rv = hn::MulAdd(ht2, rc, rv);
+        lslope = hn::MulAdd(hs2, load(in.dC[prev][c]), lslope), rslope = hn::MulAdd(ht2, load(in.dC[i][c]), rslope);
+        lacross = hn::MulAdd(s.v, lc, lacross), racross = hn::MulAdd(t.v, rc, racross);
+      }
+      term[0][c] = hn::Sub(hn::Add(lv, rv), hn::Set(d, a.corners[i].v[0][c]));
+      term[1][c] = hn::MulAdd(sp.u, lslope, hn::MulAdd(s.u, lacross, hn::MulAdd(s.u, rslope, hn::Mul(t.u, racross))));
+      term[2][c] = hn::MulAdd(sp.w, lslope, hn::MulAdd(s.w, lacross, hn::MulAdd(s.w, rslope, hn::Mul(t.w, racross))));
+    }
+    // − f W(a, b; x, y) with W = wa a + (1 − wa) b, wa = x / (x + y), x = x(s),
+    // y = y(t): fs, ft the partials of f, xs = dx/ds, yt = dy/dt, r = 1/(x + y).
+    const double(*vec)[3] = a.corners[i].v;
+    auto subtract = [&](V f, V fs, V ft, V x, V xs, V y, V yt, V r, int slot) {
+      const V wa = hn::Mul(x, r), r2 = hn::Mul(r, r);
+      const V A = hn::Mul(hn::Mul(xs, y), r2), B = hn::Mul(hn::Mul(x, yt), r2);
+      const V waU = hn::NegMulAdd(B, t.u, hn::Mul(A, s.u)), waV = hn::NegMulAdd(B, t.w, hn::Mul(A, s.w));
+      const V fU = hn::MulAdd(ft, t.u, hn::Mul(fs, s.u)), fV = hn::MulAdd(ft, t.w, hn::Mul(fs, s.w));
+      const V fa = hn::Mul(f, wa), faU = hn::MulAdd(fU, wa, hn::Mul(f, waU)), faV = hn::MulAdd(fV, wa, hn::Mul(f, waV));
+      const V fb = hn::Sub(f, fa), fbU = hn::Sub(fU, faU), fbV = hn::Sub(fV, faV);
+      for (int c = 0; c < 3; ++c) {
+        const V va = hn::Set(d, vec[slot][c]), vb = hn::Set(d, vec[slot + 1][c]);
+        term[0][c] = hn::NegMulAdd(fa, va, hn::NegMulAdd(fb, vb, term[0][c]));
+        term[1][c] = hn::NegMulAdd(faU, va, hn::NegMulAdd(fbU, vb, term[1][c]));
+        term[2][c] = hn::NegMulAdd(faV, va, hn::NegMulAdd(fbV, vb, term[2][c]));
+      }
+    };
+    const V zero = hn::Zero(d);
+    if constexpr (Parabolic) {
+      const V s2 = hn::Mul(s.v, s.v), t2 = hn::Mul(t.v, t.v);
+      const V sp3[4] = {one, s.v, s2, hn::Mul(s2, s.v)}, tp3[4] = {one, t.v, t2, hn::Mul(t2, t.v)};
+      V den[8];
+      int j = 0;
+      for (int p = 0; p <= 2; ++p)
+        for (int r = 0; r <= 2; ++r)
+          if (p || r) den[j++] = hn::Add(sp3[3 - p], tp3[3 - r]);
+      reciprocals(d, den);
+      j = 0;
+      int slot = 1;
+      for (int p = 0; p <= 2; ++p)
+        for (int r = 0; r <= 2; ++r) {
+          if (!p && !r) continue;
+          const V c = hn::Set(d, (p == 2 ? 0.5 : 1.0) * (r == 2 ? 0.5 : 1.0));
+          // f = c s^p t^r; x = s^{3−p}, y = t^{3−r}.
+          const V f = hn::Mul(c, hn::Mul(sp3[p], tp3[r]));
+          const V fs = p ? hn::Mul(hn::Mul(c, hn::Set(d, p)), hn::Mul(sp3[p - 1], tp3[r])) : zero;
+          const V ft = r ? hn::Mul(hn::Mul(c, hn::Set(d, r)), hn::Mul(sp3[p], tp3[r - 1])) : zero;
+          const V xs = hn::Mul(hn::Set(d, 3 - p), sp3[2 - p]), yt = hn::Mul(hn::Set(d, 3 - r), tp3[2 - r]);
+          subtract(f, fs, ft, sp3[3 - p], xs, tp3[3 - r], yt, den[j++], slot);
+          slot += 2;
+        }
+    } else {
+      const V s2 = hn::Mul(s.v, s.v), t2 = hn::Mul(t.v, t.v), two = hn::Set(d, 2.0);
+      V den[3] = {hn::Add(s.v, t2), hn::Add(s2, t.v), hn::Add(s.v, t.v)};
+      reciprocals(d, den);
+      // s W(a10, b10; s, t²), t W(a01, b01; s², t), s t W(a11, b11; s, t).
+      subtract(s.v, one, zero, s.v, one, t2, hn::Mul(two, t.v), den[0], 1);
+      subtract(t.v, zero, one, s2, hn::Mul(two, s.v), t.v, one, den[1], 3);
+      subtract(hn::Mul(s.v, t.v), t.v, s.v, s.v, one, t.v, one, den[2], 5);
+    }
+    for (int c = 0; c < 3; ++c) {
+      acc[0][c] = hn::MulAdd(blend.v, term[0][c], acc[0][c]);
+      acc[1][c] = hn::MulAdd(blend.u, term[0][c], hn::MulAdd(blend.v, term[1][c], acc[1][c]));
+      acc[2][c] = hn::MulAdd(blend.w, term[0][c], hn::MulAdd(blend.v, term[2][c], acc[2][c]));
+    }
+  }
+  for (int c = 0; c < 3; ++c) {
+    hn::StoreU(acc[0][c], d, a.out.v[c] + k);
+    hn::StoreU(acc[1][c], d, a.out.du[c] + k);
+    hn::StoreU(acc[2][c], d, a.out.dv[c] + k);
+  }
+}
+
+void GregoryJets(std::size_t count, const GregoryJetArgs &args, bool reference) {
+  auto run = [&](auto tag) {
+    if (args.in->values.parabolic)
+      forEachVector(tag, count, [&](auto d, std::size_t k) { gregoryJetBody<true>(d, k, args); });
+    else forEachVector(tag, count, [&](auto d, std::size_t k) { gregoryJetBody<false>(d, k, args); });
+  };
+  if (reference) run(hn::CappedTag<double, 1>());
+  else run(hn::ScalableTag<double>());
 }
 
 void GregoryPositions(std::size_t count, const GregoryArgs &args, bool reference) {
@@ -605,6 +726,7 @@ HWY_EXPORT(Accumulate);
 HWY_EXPORT(SweepRoots);
 HWY_EXPORT(SweepRootsRobust);
 HWY_EXPORT(GregoryPositions);
+HWY_EXPORT(GregoryJets);
 HWY_EXPORT(EvaluateTable);
 HWY_EXPORT(Lanes);
 
@@ -667,6 +789,13 @@ void accumulateConstant(std::size_t count, DualSpan w, const double c[3], DualVe
   const std::size_t index = tableIndex(width, reference);
   HWY_DISPATCH_TABLE(Accumulate)[index](count, {w, {{nullptr, nullptr, nullptr}, {}, {}}, {c[0], c[1], c[2]}, out},
                                         reference);
+}
+
+void gregoryJets(std::size_t count, const GregoryJetSamples &samples, const GregoryCorner *corners, DualVec3Span out,
+                 std::int64_t width) {
+  bool reference;
+  const std::size_t index = tableIndex(width, reference);
+  HWY_DISPATCH_TABLE(GregoryJets)[index](count, {&samples, corners, out}, reference);
 }
 
 void evaluateTable(std::size_t count, const PolynomialTable &table, const double *s, double *const *values,

@@ -1,9 +1,9 @@
-// Patch evaluation through an evaluation plan: per side, the ribbon jets at
-// the plan's side parameters (the only geometry-dependent work); then the
-// Gregory formula (paper 000 eqs. 16–18, 22) as structure-of-arrays passes
-// of the SIMD kernels — two ribbon points per corner, their blend-weighted
-// sum, and the correction patch as blend × correction weights times the
-// corner vectors (summed per sample while the weights are computed).
+// Patch evaluation through an evaluation plan or at batches of domain
+// points: per side, the ribbon at the side parameters (from the ribbon
+// tables, or exactly at low plan resolutions: the only geometry-dependent
+// work); then the Gregory formula (paper 000 eqs. 16–18, 22) in one pass of
+// a SIMD kernel — kernels::gregoryPositions for points alone,
+// kernels::gregoryJets with exact first derivatives.
 #include <algorithm>
 #include <array>
 #include <vector>
@@ -36,7 +36,6 @@ struct Scratch {
 struct DualArray {
   double *v, *du, *dv;
   void take(Scratch &s) { v = s.take(), du = s.take(), dv = s.take(); }
-  kernels::DualSpan span() const { return {v, du, dv}; }
   void set(std::size_t k, const Dual &x) { v[k] = x.v, du[k] = x.du, dv[k] = x.dv; }
 };
 
@@ -48,45 +47,6 @@ struct Vec3Array {
 
 struct JetArrays {
   Vec3Array P, dP, T, dT, C, dC;
-  kernels::RibbonJets view(bool parabolic) const {
-    kernels::RibbonJets j;
-    for (int c = 0; c < 3; ++c) {
-      j.P[c] = P.c[c], j.dP[c] = dP.c[c], j.T[c] = T.c[c], j.dT[c] = dT.c[c];
-      if (parabolic) j.C[c] = C.c[c], j.dC[c] = dC.c[c];
-    }
-    return j;
-  }
-};
-
-/// (x a + y b) / (x + y) as weights on a and b: wa = x / (x + y) with one
-/// division (its derivatives by the quotient rule with the shared
-/// reciprocal), wb = 1 − wa. The loops below call this 8 times per sample
-/// and side for G², where three divisions per Dual quotient were a large
-/// part of the evaluation.
-inline void rationalWeights(Dual x, Dual y, Dual &wa, Dual &wb) {
-  const Dual sum = x + y;
-  if (sum.v == 0) { // the corner itself (never a plan sample): the finite limit
-    wa = wb = 0.5;
-    return;
-  }
-  const double r = 1 / sum.v, q = x.v * r;
-  wa = {q, (x.du - q * sum.du) * r, (x.dv - q * sum.dv) * r};
-  wb = {1 - q, -wa.du, -wa.dv};
-}
-
-/// −B Q at one sample, summed over the corner vectors in registers while the
-/// weights are computed: one pass over the accumulators per side instead of
-/// one memory pass per corner vector (17 for G²).
-struct CorrectionSum {
-  double c[9] = {}; // value xyz, d/du xyz, d/dv xyz
-  void add(const Dual &w, const Vec3 &v) {
-    c[0] += w.v * v.x, c[1] += w.v * v.y, c[2] += w.v * v.z;
-    c[3] += w.du * v.x, c[4] += w.du * v.y, c[5] += w.du * v.z;
-    c[6] += w.dv * v.x, c[7] += w.dv * v.y, c[8] += w.dv * v.z;
-  }
-  void addTo(double *const *acc, std::size_t k) const {
-    for (int i = 0; i < 9; ++i) acc[i][k] += c[i];
-  }
 };
 
 constexpr int kMaxSides = 8;
@@ -329,7 +289,7 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
   const bool g2 = options_.scheme == Scheme::GregoryG2;
   thread_local Scratch scratch;
   const std::size_t jetArrays = g2 ? 18 : 12;
-  scratch.reset(count, static_cast<std::size_t>(n) * (6 + jetArrays) + 3 + 9 + 9);
+  scratch.reset(count, static_cast<std::size_t>(n) * (6 + jetArrays) + 9);
   std::array<DualArray, kMaxSides> side, blend;
   std::array<JetArrays, kMaxSides> jets;
   for (int i = 0; i < n; ++i) {
@@ -337,14 +297,8 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
     jets[i].P.take(scratch), jets[i].dP.take(scratch), jets[i].T.take(scratch), jets[i].dT.take(scratch);
     if (g2) jets[i].C.take(scratch), jets[i].dC.take(scratch);
   }
-  DualArray across;
-  across.take(scratch);
-  double *term[9], *acc[9];
-  for (double *&p : term) p = scratch.take();
-  for (double *&p : acc) p = scratch.take(), std::fill(p, p + count, 0.0);
-  const kernels::DualVec3Span termOut{{term[0], term[1], term[2]}, {term[3], term[4], term[5]}, {term[6], term[7], term[8]}};
-  const kernels::ConstDualVec3Span termIn{{term[0], term[1], term[2]}, {term[3], term[4], term[5]}, {term[6], term[7], term[8]}};
-  const kernels::DualVec3Span accOut{{acc[0], acc[1], acc[2]}, {acc[3], acc[4], acc[5]}, {acc[6], acc[7], acc[8]}};
+  double *result[9];
+  for (double *&p : result) p = scratch.take();
 
   // Geometry: each side's ribbon at the plan's side parameters, one batch per
   // side — from the tables at high resolutions, else exactly (the plan's
@@ -386,63 +340,28 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
     }
   }
 
+  // The Gregory formula (eqs. 16–18, 22) with its derivatives in one kernel pass.
+  kernels::GregoryJetSamples in;
+  in.values.sides = n, in.values.parabolic = g2;
   for (int i = 0; i < n; ++i) {
-    const int prev = domain_.wrap(i - 1);
-    // I_{i,i−1} = R_{i−1}(s_{i−1}, s_i) + R_i(s_i, 1 − s_{i−1}) − Q(s_i, 1 − s_{i−1}), weighted by B_{i,i−1}.
-    for (std::size_t k = 0; k < count; ++k)
-      across.v[k] = 1.0 - side[prev].v[k], across.du[k] = -side[prev].du[k], across.dv[k] = -side[prev].dv[k];
-    kernels::ribbonPoints(count, jets[prev].view(g2), side[prev].span(), side[i].span(), termOut);
-    kernels::accumulate(count, blend[i].span(), termIn, accOut);
-    kernels::ribbonPoints(count, jets[i].view(g2), side[i].span(), across.span(), termOut);
-    kernels::accumulate(count, blend[i].span(), termIn, accOut);
-
-    // Correction patch: −B Q = Σ_c (−B ω_c) V_c over the corner vectors V_c.
-    std::array<Vec3, kMaxCornerVectors> vectors;
-    {
-      const kernels::GregoryCorner corner = tables ? tables->corners[i] : cornerVectors(i);
-      for (int c = 0; c < kMaxCornerVectors; ++c) vectors[c] = {corner.v[c][0], corner.v[c][1], corner.v[c][2]};
-    }
-    if (g2) {
-      constexpr double inverseFactorial[3] = {1.0, 1.0, 0.5};
-      for (std::size_t k = 0; k < count; ++k) {
-        CorrectionSum sum;
-        const Dual s{side[i].v[k], side[i].du[k], side[i].dv[k]}, t{across.v[k], across.du[k], across.dv[k]};
-        const Dual minusB = -Dual{blend[i].v[k], blend[i].du[k], blend[i].dv[k]};
-        const Dual sp[4] = {1.0, s, s * s, s * s * s}, tp[4] = {1.0, t, t * t, t * t * t};
-        int c = 0;
-        sum.add(minusB, vectors[c++]);
-        for (int p = 0; p <= 2; ++p)
-          for (int r = 0; r <= 2; ++r) {
-            if (!p && !r) continue;
-            Dual wa, wb;
-            rationalWeights(sp[3 - p], tp[3 - r], wa, wb);
-            const double f = inverseFactorial[p] * inverseFactorial[r];
-            const Dual st = minusB * sp[p] * tp[r], scale{st.v * f, st.du * f, st.dv * f};
-            sum.add(scale * wa, vectors[c++]);
-            sum.add(scale * wb, vectors[c++]);
-          }
-        sum.addTo(acc, k);
-      }
-    } else {
-      for (std::size_t k = 0; k < count; ++k) {
-        const Dual s{side[i].v[k], side[i].du[k], side[i].dv[k]}, t{across.v[k], across.du[k], across.dv[k]};
-        const Dual minusB = -Dual{blend[i].v[k], blend[i].du[k], blend[i].dv[k]};
-        // Q = a00 + s W(a10, b10; s, t²) + t W(a01, b01; s², t) + s t W(a11, b11; s, t).
-        Dual wa, wb;
-        CorrectionSum sum;
-        sum.add(minusB, vectors[0]);
-        rationalWeights(s, t * t, wa, wb);
-        sum.add(minusB * s * wa, vectors[1]), sum.add(minusB * s * wb, vectors[2]);
-        rationalWeights(s * s, t, wa, wb);
-        sum.add(minusB * t * wa, vectors[3]), sum.add(minusB * t * wb, vectors[4]);
-        rationalWeights(s, t, wa, wb);
-        sum.add(minusB * s * t * wa, vectors[5]), sum.add(minusB * s * t * wb, vectors[6]);
-        sum.addTo(acc, k);
-      }
+    in.values.s[i] = side[i].v, in.sDu[i] = side[i].du, in.sDv[i] = side[i].dv;
+    in.values.blend[i] = blend[i].v, in.blendDu[i] = blend[i].du, in.blendDv[i] = blend[i].dv;
+    for (int c = 0; c < 3; ++c) {
+      in.values.P[i][c] = jets[i].P.c[c], in.values.T[i][c] = jets[i].T.c[c];
+      in.dP[i][c] = jets[i].dP.c[c], in.dT[i][c] = jets[i].dT.c[c];
+      if (g2) in.values.C[i][c] = jets[i].C.c[c], in.dC[i][c] = jets[i].dC.c[c];
     }
   }
+  std::array<kernels::GregoryCorner, kMaxSides> cornerStore;
+  const kernels::GregoryCorner *corners = tables ? tables->corners.data() : cornerStore.data();
+  if (!tables)
+    for (int i = 0; i < n; ++i) cornerStore[i] = cornerVectors(i);
+  kernels::gregoryJets(count, in, corners,
+                       {{result[0], result[1], result[2]}, {result[3], result[4], result[5]}, {result[6], result[7], result[8]}});
   for (std::size_t k = 0; k < count; ++k)
-    out[k] = {{acc[0][k], acc[1][k], acc[2][k]}, {acc[3][k], acc[4][k], acc[5][k]}, {acc[6][k], acc[7][k], acc[8][k]}};
+    out[k] = {{result[0][k], result[1][k], result[2][k]},
+              {result[3][k], result[4][k], result[5][k]},
+              {result[6][k], result[7][k], result[8][k]}};
 }
 
 } // namespace v1

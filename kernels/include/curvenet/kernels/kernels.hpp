@@ -126,6 +126,23 @@ struct GregoryCorner {
 void gregoryPositions(std::size_t count, const GregorySamples &samples, const GregoryCorner *corners,
                       double *const out[3], std::int64_t width = kBestWidth);
 
+/// gregoryPositions' data with the first derivatives over the domain: of
+/// the side parameters and blends (∂/∂u, ∂/∂v), and of the ribbons along
+/// their sides (d/ds of P, T, C).
+struct GregoryJetSamples {
+  GregorySamples values;
+  const double *sDu[GregorySamples::kMaxSides] = {}, *sDv[GregorySamples::kMaxSides] = {};
+  const double *blendDu[GregorySamples::kMaxSides] = {}, *blendDv[GregorySamples::kMaxSides] = {};
+  const double *dP[GregorySamples::kMaxSides][3] = {}, *dT[GregorySamples::kMaxSides][3] = {},
+               *dC[GregorySamples::kMaxSides][3] = {};
+};
+
+/// (b) gregoryPositions with exact first derivatives: the point into out.v,
+/// ∂/∂u into out.du, ∂/∂v into out.dv (product, quotient and chain rules
+/// through the ribbons and the rational weights, in one pass).
+void gregoryJets(std::size_t count, const GregoryJetSamples &samples, const GregoryCorner *corners, DualVec3Span out,
+                 std::int64_t width = kBestWidth);
+
 /// Constants of one side of a regular domain for the cubic Hermite sweepline
 /// (paper 000 eq. 20) in that side's frame (side from (0,0) to (1,0), domain
 /// at y > 0): a, b the directions of the neighbouring sides leaving the two
