@@ -15,6 +15,7 @@
 #include "curvenet/error.hpp"
 #include "curvenet/surface.hpp"
 #include "patches/patch.hpp"
+#include "plans/plan.hpp"
 
 namespace curvenet {
 inline namespace v1 {
@@ -96,35 +97,55 @@ double constrainedTransversal(const std::array<double, 5> &measured, double k0) 
 /// A loop far from convex (a concave corner, a strongly bent side) can make
 /// the map from the regular n-gon fold over itself: the surface normal
 /// du × dv turns over inside the patch. Detected on the n-fold fan grid of
-/// the tessellator at 8 rows (inset a little from the sides, so that
-/// straight-angle corners with vanishing derivatives are avoided): two
-/// neighbouring samples whose normals point into opposite half-spaces. A
-/// smooth patch cannot turn its normal by 90° between samples this close
-/// unless it folds, so no well-formed patch is reported.
+/// the tessellator at 8 rows: two neighbouring samples whose normals point
+/// into opposite half-spaces. A smooth patch cannot turn its normal by 90°
+/// between samples this close unless it folds, so no well-formed patch is
+/// reported. The interior of each centre–side triangle and the centre are
+/// the samples of the cached evaluation plan at resolution 8 (geometry-free,
+/// shared by every face and build: no sweepline root solve per face). The
+/// first row and the spokes are evaluated point by point, inset a little:
+/// from the sides, so that straight-angle corners with vanishing derivatives
+/// are avoided, and from the spokes, where the Hermite sweep of a triangle
+/// has its known fold along the bisector near the corner (surface.hpp,
+/// Sweepline), which the interpolants there barely weigh.
 struct NonFinitePatch {};
 
+constexpr int kFoldRows = 8;
+
 bool patchFolds(const Patch &patch) {
-  constexpr int rows = 8;
+  constexpr int rows = kFoldRows;
   const RegularDomain &domain = patch.domain();
   const int n = domain.sides();
-  auto normalAt = [&](const Vec2 &uv) {
-    const DualVec3 r = patch.evaluate(uv.x, uv.y);
+  auto normalOf = [](const DualVec3 &r) {
     const Vec3 normal = cross(r.du, r.dv);
     if (!std::isfinite(r.v.x + r.v.y + r.v.z + normal.x + normal.y + normal.z)) throw NonFinitePatch{};
     return normal;
   };
+  const std::shared_ptr<const EvaluationPlan> plan = evaluationPlan(planKey(patch.options(), n, rows));
+  std::vector<DualVec3> planned(plan->size());
+  patch.evaluatePlanned(*plan, 0, plan->size(), planned.data());
+  std::vector<Vec3> normals(planned.size());
+  for (std::size_t k = 0; k < planned.size(); ++k) normals[k] = normalOf(planned[k]);
+  // The plan's sample order (plan.hpp): centre, spokes corner-major at levels
+  // 1 … rows − 1 (not used here), then each centre–side triangle's interior
+  // row by row.
+  std::size_t interior = 1 + static_cast<std::size_t>(n) * (rows - 1);
+  auto pointwise = [&](const Vec2 &uv) { return normalOf(patch.evaluate(uv.x, uv.y)); };
   for (int i = 0; i < n; ++i) {
-    std::vector<std::vector<Vec3>> grid(rows);
+    std::vector<std::vector<Vec3>> grid(rows + 1);
     for (int k = 0; k < rows; ++k) {
       const double shrink = 1.0 - (k + 0.02) / rows;
       const Vec2 a = domain.corner(i) * shrink, b = domain.corner(i + 1) * shrink;
       const int m = rows - k;
-      for (int j = 0; j <= m; ++j) grid[k].push_back(normalAt(a + (b - a) * ((j + 0.02) / (m + 0.04))));
+      for (int j = 0; j <= m; ++j)
+        grid[k].push_back(k == 0 || j == 0 || j == m ? pointwise(a + (b - a) * ((j + 0.02) / (m + 0.04)))
+                                                     : normals[interior++]);
     }
-    for (int k = 0; k < rows; ++k)
+    grid[rows].push_back(normals[0]);
+    for (int k = 0; k <= rows; ++k)
       for (size_t j = 0; j < grid[k].size(); ++j) {
         if (j + 1 < grid[k].size() && dot(grid[k][j], grid[k][j + 1]) <= 0) return true;
-        if (k + 1 < rows && j < grid[k + 1].size() && dot(grid[k][j], grid[k + 1][j]) <= 0) return true;
+        if (k < rows && j < grid[k + 1].size() && dot(grid[k][j], grid[k + 1][j]) <= 0) return true;
       }
   }
   return false;
