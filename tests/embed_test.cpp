@@ -272,3 +272,23 @@ TEST(Embed, EditingACurveRebuildsOnlyTheFacesAroundIt) {
     for (const Vec2 &uv : domainPoints(*model, f, 20, 11))
       ASSERT_TRUE(samePoint(*model->evaluate(f, uv), *fresh->evaluate(f, uv))) << "face " << f;
 }
+
+TEST(Embed, AnEditUpdatesTheCachedTessellationOnItsFacesOnly) {
+  auto model = Model::load("builtin:ellipsoid-truncated-icosahedron", {.scheme = Scheme::GregoryG2});
+  ASSERT_TRUE(model.ok());
+  ASSERT_TRUE(model->tessellate({.resolution = 8}).ok());
+  const int curve = model->network().segments()[0].sourceCurve;
+  std::vector<Vec3> points = model->description().curves[curve].controlPoints();
+  for (std::size_t k = 1; k + 1 < points.size(); ++k) points[k].z += 0.02;
+  ASSERT_TRUE(model->setControlPoints(curve, points).ok());
+  EXPECT_EQ(model->lastEditedFaces().size(), 4u);
+  EXPECT_TRUE(model->mesh().positions.empty());
+  ASSERT_TRUE(model->tessellate({.resolution = 8}).ok());
+
+  auto fresh = Model::build(model->description(), {.scheme = Scheme::GregoryG2});
+  ASSERT_TRUE(fresh.ok());
+  ASSERT_TRUE(fresh->tessellate({.resolution = 8}).ok());
+  EXPECT_EQ(model->mesh().positions, fresh->mesh().positions);
+  EXPECT_EQ(model->mesh().normals, fresh->mesh().normals);
+  EXPECT_EQ(model->mesh().triangles, fresh->mesh().triangles);
+}

@@ -177,3 +177,32 @@ TEST(PartialRebuild, TopologyChangeFallsBackToAFullBuild) {
   EXPECT_EQ(edit.changedFaces.size(), 12u);
   EXPECT_EQ(edit.surface.faceCount(), 12);
 }
+
+TEST(PartialRebuild, RetessellatingTheChangedFacesEqualsAFullTessellation) {
+  // saddle-nodes has T-nodes, an X-node and a 2-sided face; each edit keeps
+  // the topology, and the updated mesh equals a fresh one byte for byte.
+  const NetworkDescription description = builtinNetwork("saddle-nodes");
+  const Network network = Network::build(description);
+  for (SurfaceOptions options : {SurfaceOptions{Scheme::GregoryG2}, SurfaceOptions{Scheme::CompositeRibbon}}) {
+    const Surface before = Surface::build(network, options);
+    for (int c : {2, 7, 8}) {
+      const Network edited = Network::build(movedCurve(description, c, {0.0, 0.0, 0.003}, true));
+      const SurfaceEdit edit = before.rebuildAfterEdit(edited);
+      ASSERT_TRUE(edit.partial);
+      for (bool record : {false, true}) {
+        const TessellationOptions tess{.resolution = 12, .threads = 2, .recordDomainPoints = record};
+        Mesh mesh = tessellate(before, tess);
+        retessellateFaces(edit.surface, edit.changedFaces, mesh, tess);
+        const Mesh fresh = tessellate(Surface::build(edited, options), tess);
+        EXPECT_EQ(mesh.positions, fresh.positions) << schemeName(options.scheme) << " curve " << c;
+        EXPECT_EQ(mesh.normals, fresh.normals) << schemeName(options.scheme) << " curve " << c;
+        EXPECT_EQ(mesh.triangles, fresh.triangles) << schemeName(options.scheme) << " curve " << c;
+        EXPECT_EQ(mesh.faceTriangleStart, fresh.faceTriangleStart);
+        ASSERT_EQ(mesh.domainPoints.size(), fresh.domainPoints.size());
+        for (std::size_t v = 0; v < mesh.domainPoints.size(); ++v)
+          ASSERT_TRUE(mesh.domainPoints[v].face == fresh.domainPoints[v].face &&
+                      mesh.domainPoints[v].uv == fresh.domainPoints[v].uv);
+      }
+    }
+  }
+}

@@ -277,6 +277,10 @@ public:
   /// for one face, which is cut from it — plus a copy; the whole-network
   /// result is cached per resolution until an edit or an options change,
   /// so tessellating the faces one by one costs one tessellation in all.
+  /// After an edit of a model with one Surface (surfaceCount() == 1) that
+  /// kept the topology, the cached result is re-tessellated on the edited
+  /// faces only (lastEditedFaces, through the cached plans), so the next
+  /// call at that resolution costs a copy; otherwise an edit drops it.
   Result<MeshSize> tessellate(const TessellationOptions &options = {}, int face = allFaces);
 
   /// The kept mesh (library-owned; empty before any tessellate and after an
@@ -307,7 +311,8 @@ public:
   /// description would. Where the edit changes the topology (curve ends or
   /// crossings meeting differently), and for bezier-g1 / coons-c0, the
   /// surfaces are built in full. Cost: proportional to the faces rebuilt
-  /// (lastEditedFaces), not to the model. Clears the kept mesh; call
+  /// (lastEditedFaces), not to the model, and so is bringing the cached
+  /// tessellation up to date (see tessellate). Clears the kept mesh; call
   /// tessellate again. Face and curve numbers stay; vertex and segment
   /// numbers stay unless the edit makes curve ends meet differently. On
   /// failure (a loop no longer closes, …) nothing changes.

@@ -180,15 +180,25 @@ struct Model::Impl {
     impl->faceOptions = old.faceOptions;
     impl->faceGroup = old.faceGroup;
     std::vector<int> changed;
+    bool partial = true;
     for (const Group &g : old.groups) {
       SurfaceEdit edit = g.surface.rebuildAfterEdit(impl->network);
       changed.insert(changed.end(), edit.changedFaces.begin(), edit.changedFaces.end());
+      partial = partial && edit.partial;
       impl->groups.push_back({g.options, std::move(edit.surface)});
     }
     CURVENET_CHECK(static_cast<int>(impl->network.faces().size()) == static_cast<int>(impl->faceGroup.size()),
                    "an edit keeps the faces");
     std::sort(changed.begin(), changed.end());
     changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+    // One surface, same topology: the cached whole-network tessellation is
+    // brought up to date on the changed faces only (plans reused), so the
+    // next tessellate at that resolution costs a copy.
+    if (partial && old.whole && impl->groups.size() == 1) {
+      impl->whole = *old.whole;
+      impl->wholeOptions = old.wholeOptions;
+      retessellateFaces(impl->groups[0].surface, changed, *impl->whole, impl->wholeOptions);
+    }
     impl->lastChangedFaces = std::move(changed);
     return impl;
   }
