@@ -90,9 +90,40 @@ void batchPositionsBench(benchmark::State &state, Scheme scheme, std::string mod
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * uv.size()));
 }
 
-void surfaceBuildBench(benchmark::State &state, Scheme scheme, std::string model) {
+void surfaceBuildBench(benchmark::State &state, Scheme scheme, std::string model, int threads) {
   const Network network = Network::build(builtinNetwork(model));
+  std::optional<tbb::global_control> limit;
+  if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, threads);
   for (auto _ : state) benchmark::DoNotOptimize(Surface::build(network, {scheme}));
+}
+
+/// One edge curve of the model moved (interior control points), then the
+/// surface rebuilt after the edit (Surface::rebuildAfterEdit) and, with
+/// resolution > 0, its whole-network mesh re-tessellated on the changed
+/// faces (retessellateFaces); resolution 0 times the rebuild alone.
+void surfaceEditBench(benchmark::State &state, Scheme scheme, std::string model, int resolution) {
+  const NetworkDescription description = builtinNetwork(model);
+  const Network network = Network::build(description);
+  NetworkDescription moved = description;
+  const int c = network.segments()[0].sourceCurve;
+  std::vector<Vec3> points = moved.curves[c].controlPoints();
+  for (std::size_t k = 1; k + 1 < points.size(); ++k) points[k].z += 0.02;
+  moved.curves[c] = BSplineCurve(moved.curves[c].degree(), moved.curves[c].knots(), points, moved.curves[c].weights());
+  const Network edited = Network::build(moved);
+  const Surface before = Surface::build(network, {scheme});
+  const TessellationOptions options{.resolution = std::max(resolution, 1)};
+  const Mesh original = resolution > 0 ? tessellate(before, options) : Mesh{};
+  Mesh mesh;
+  for (auto _ : state) {
+    SurfaceEdit edit = before.rebuildAfterEdit(edited);
+    if (resolution > 0) {
+      state.PauseTiming();
+      mesh = original;
+      state.ResumeTiming();
+      retessellateFaces(edit.surface, edit.changedFaces, mesh, options);
+    }
+    benchmark::DoNotOptimize(edit);
+  }
 }
 
 struct KernelData {
@@ -233,8 +264,20 @@ int registerAll() {
                                  scheme, std::string("pentagon"))
         ->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("SurfaceBuild/" + std::string(name) + "/ellipsoid-truncated-icosahedron").c_str(),
-                                 surfaceBuildBench, scheme, std::string("ellipsoid-truncated-icosahedron"))
-        ->Unit(benchmark::kMillisecond);
+                                 surfaceBuildBench, scheme, std::string("ellipsoid-truncated-icosahedron"), 0)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+    benchmark::RegisterBenchmark(("SurfaceBuild/" + std::string(name) + "/ellipsoid-truncated-icosahedron/t1").c_str(),
+                                 surfaceBuildBench, scheme, std::string("ellipsoid-truncated-icosahedron"), 1)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+    for (int r : {0, 64})
+      benchmark::RegisterBenchmark(("SurfaceEdit/" + std::string(name) + "/ellipsoid-truncated-icosahedron/one-curve/" +
+                                    (r ? "retessellate-r" + std::to_string(r) : std::string("rebuild")))
+                                       .c_str(),
+                                   surfaceEditBench, scheme, std::string("ellipsoid-truncated-icosahedron"), r)
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
   }
   for (const ck::Width &w : ck::availableWidths()) {
     const std::string suffix = "/" + w.name + "x" + std::to_string(w.lanes);

@@ -4,6 +4,8 @@
 // model unchanged, instead of an exception.
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -260,4 +262,55 @@ TEST(Embed, EditingACurveRebuildsAsAFreshModelWould) {
   EXPECT_TRUE(samePoint(*model->evaluate(0, {0.1, 0.1}), kept));
   EXPECT_EQ(model->setControlPoints(2, std::span(points).first(2)).code, StatusCode::InvalidArgument);
   EXPECT_EQ(model->setControlPoints(9, points).code, StatusCode::InvalidArgument);
+}
+
+TEST(Embed, EditingACurveRebuildsOnlyTheFacesAroundIt) {
+  // Two groups (gregory-g2 everywhere, gregory-g1 on face 5): each group's
+  // surface is rebuilt near the edited curve only, and the model evaluates
+  // as a freshly built one.
+  auto model = Model::load("builtin:ellipsoid-truncated-icosahedron", {.scheme = Scheme::GregoryG2});
+  ASSERT_TRUE(model.ok());
+  ASSERT_TRUE(model->setFaceOptions(5, {.scheme = Scheme::GregoryG1}).ok());
+  ASSERT_EQ(model->surfaceCount(), 2);
+  EXPECT_TRUE(model->lastEditedFaces().empty());
+
+  const Segment &seg = model->network().segments()[0];
+  const int curve = seg.sourceCurve;
+  std::set<int> expected; // faces at the segment's two end vertices (valence 3: four faces)
+  for (int v : {seg.start, seg.end})
+    for (int e : model->network().vertices()[v].segments)
+      for (int f : model->network().segments()[e].faces) expected.insert(f);
+  ASSERT_EQ(expected.size(), 4u);
+
+  std::vector<Vec3> points = model->description().curves[curve].controlPoints();
+  for (std::size_t k = 1; k + 1 < points.size(); ++k) points[k].z += 0.02;
+  ASSERT_TRUE(model->setControlPoints(curve, points).ok());
+  EXPECT_EQ(model->lastEditedFaces(), std::vector<int>(expected.begin(), expected.end()));
+
+  auto fresh = Model::build(model->description(), {.scheme = Scheme::GregoryG2});
+  ASSERT_TRUE(fresh.ok());
+  ASSERT_TRUE(fresh->setFaceOptions(5, {.scheme = Scheme::GregoryG1}).ok());
+  for (int f = 0; f < model->faceCount(); ++f)
+    for (const Vec2 &uv : domainPoints(*model, f, 20, 11))
+      ASSERT_TRUE(samePoint(*model->evaluate(f, uv), *fresh->evaluate(f, uv))) << "face " << f;
+}
+
+TEST(Embed, AnEditUpdatesTheCachedTessellationOnItsFacesOnly) {
+  auto model = Model::load("builtin:ellipsoid-truncated-icosahedron", {.scheme = Scheme::GregoryG2});
+  ASSERT_TRUE(model.ok());
+  ASSERT_TRUE(model->tessellate({.resolution = 8}).ok());
+  const int curve = model->network().segments()[0].sourceCurve;
+  std::vector<Vec3> points = model->description().curves[curve].controlPoints();
+  for (std::size_t k = 1; k + 1 < points.size(); ++k) points[k].z += 0.02;
+  ASSERT_TRUE(model->setControlPoints(curve, points).ok());
+  EXPECT_EQ(model->lastEditedFaces().size(), 4u);
+  EXPECT_TRUE(model->mesh().positions.empty());
+  ASSERT_TRUE(model->tessellate({.resolution = 8}).ok());
+
+  auto fresh = Model::build(model->description(), {.scheme = Scheme::GregoryG2});
+  ASSERT_TRUE(fresh.ok());
+  ASSERT_TRUE(fresh->tessellate({.resolution = 8}).ok());
+  EXPECT_EQ(model->mesh().positions, fresh->mesh().positions);
+  EXPECT_EQ(model->mesh().normals, fresh->mesh().normals);
+  EXPECT_EQ(model->mesh().triangles, fresh->mesh().triangles);
 }

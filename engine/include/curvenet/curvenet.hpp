@@ -13,7 +13,8 @@
 //  * tessellate one face or the whole network into a library-owned mesh or
 //    into caller-provided buffers sized by a query first (tessellate, mesh,
 //    copyMesh);
-//  * move curves and re-evaluate (setCurve, setControlPoints).
+//  * move curves and re-evaluate (setCurve, setControlPoints): only the
+//    faces near the moved curve are rebuilt.
 //
 // Errors. Nothing in this header throws. Every call that can fail returns a
 // Status — or a Result<T>, a value or a Status — carrying a code, the
@@ -284,6 +285,10 @@ public:
   /// for one face, which is cut from it — plus a copy; the whole-network
   /// result is cached per resolution until an edit or an options change,
   /// so tessellating the faces one by one costs one tessellation in all.
+  /// After an edit of a model with one Surface (surfaceCount() == 1) that
+  /// kept the topology, the cached result is re-tessellated on the edited
+  /// faces only (lastEditedFaces, through the cached plans), so the next
+  /// call at that resolution costs a copy; otherwise an edit drops it.
   Result<MeshSize> tessellate(const TessellationOptions &options = {}, int face = allFaces);
 
   /// The kept mesh (library-owned; empty before any tessellate and after an
@@ -302,20 +307,34 @@ public:
 
   // ---- Editing ----
 
-  /// Replaces curve `curve` of the description and rebuilds: Network::build
-  /// and every group's Surface::build. Cost: a full rebuild, linear in the
-  /// segments — the public Surface has no partial rebuild yet, so an edit
-  /// costs the same whatever it touches (README "Embedding" lists measured
-  /// figures: a few ms for one gregory-g1 pentagon, some 100 ms for 32
-  /// gregory-g2 faces, whose curvature-compatible fences dominate).
-  /// Clears the kept mesh; call tessellate again. Face and curve numbers
-  /// stay; vertex and segment numbers stay unless the edit makes curve ends
-  /// meet differently. On failure (a loop no longer closes, …) nothing changes.
+  /// Replaces curve `curve` of the description and rebuilds what depends on
+  /// it: Network::build (linear in the curves, cheap), then for every group
+  /// Surface::rebuildAfterEdit, which recomputes the frames and curvatures
+  /// of the vertices at the ends of the curve's segments, the fences (and
+  /// gregory-g2 edge curvatures) of every segment at those vertices and the
+  /// patches of the faces using those segments — one face ring around the
+  /// curve (two rings for gregory-g2 with master–slave or averaging edge
+  /// curvature) — and shares everything else with the previous surfaces.
+  /// The surfaces evaluate bit for bit as a model built from the edited
+  /// description would. Where the edit changes the topology (curve ends or
+  /// crossings meeting differently), and for bezier-g1 / coons-c0, the
+  /// surfaces are built in full. Cost: proportional to the faces rebuilt
+  /// (lastEditedFaces), not to the model, and so is bringing the cached
+  /// tessellation up to date (see tessellate). Clears the kept mesh; call
+  /// tessellate again. Face and curve numbers stay; vertex and segment
+  /// numbers stay unless the edit makes curve ends meet differently. On
+  /// failure (a loop no longer closes, …) nothing changes.
   Status setCurve(int curve, BSplineCurve replacement);
 
   /// The common edit: new control points for curve `curve`, same degree,
   /// knots and weights (points.size() must equal the current count).
+  /// Same cost and guarantees as setCurve.
   Status setControlPoints(int curve, std::span<const Vec3> points);
+
+  /// Faces whose patches the last setCurve / setControlPoints rebuilt, over
+  /// all groups, ascending (every face after a full rebuild; empty before
+  /// any edit).
+  const std::vector<int> &lastEditedFaces() const;
 
 private:
   struct Impl;

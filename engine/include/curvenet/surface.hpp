@@ -50,9 +50,12 @@
 //
 // Threads: a built Surface is immutable; evaluate() may be called from any
 // number of threads at once. Cost: build is linear in the number of segments
-// (fence construction dominates; gregory-g2 with MasterSlave, Averaging or a
-// named master face also builds and samples the G¹ surface); evaluate is O(n) ribbon evaluations
-// (Gregory) or O(3n) (composite ribbon) and allocates nothing.
+// and faces (the fold check of every patch, then fence construction,
+// dominate; gregory-g2 with MasterSlave, Averaging or a named master face
+// also builds, keeps and samples the G¹ surface), parallel over segments and
+// faces; rebuildAfterEdit rebuilds the faces near an edit only; evaluate is
+// O(n) ribbon evaluations (Gregory) or O(3n) (composite ribbon) and
+// allocates nothing.
 #pragma once
 
 #include <memory>
@@ -173,11 +176,40 @@ struct VertexCurvatureInfo {
   double maxResidual = 0; ///< 1/length: largest misfit of a curve's normal curvature
 };
 
+struct SurfaceEdit;
+
 class Surface {
 public:
   /// Builds fences, ribbons and patches for every face. Throws InputError
   /// naming the face when its data cannot carry a patch (degenerate tangents).
+  /// Threads: fences, edge curvatures and patches are each built in
+  /// parallel over TBB (one segment or face per task, inside the caller's
+  /// task arena or global_control limit); the result is bit for bit the same
+  /// for any thread count, and so is the error reported (the lowest face's).
   static Surface build(const Network &network, const SurfaceOptions &options = {});
+
+  /// The surface over `edited`, a network built from this surface's
+  /// network's description with some curves changed in shape (moved control
+  /// points, other knots or degree) but the same loops, edge settings and
+  /// reference surface, rebuilding only what the changed curves reach:
+  ///  * the frames and curvatures of the vertices at the ends of every
+  ///    segment whose curve changed (all curves at a vertex enter its
+  ///    tangent plane and curvature fit);
+  ///  * the fences and (gregory-g2) transversal curvatures of every segment
+  ///    at those vertices — with master–slave, averaging, named masters or
+  ///    connection curves also of the segments of the faces whose G¹ patch
+  ///    (kept from the build) changed;
+  ///  * the patches of the faces using any of those segments.
+  /// Everything else is shared with this surface. The result evaluates bit
+  /// for bit like Surface::build(edited, options()). A full build is made
+  /// instead (partial = false, every face listed) for the Bézier schemes,
+  /// for a network built away from the origin (origin() ≠ 0) or that would
+  /// be, and when the topology differs (curve ends meeting differently,
+  /// another face or vertex count). Cost: proportional to the faces rebuilt,
+  /// one face ring around the edited curves (two rings for G¹-measured edge
+  /// curvature). Thread-safety: const; this surface stays valid and
+  /// unchanged.
+  SurfaceEdit rebuildAfterEdit(const Network &edited) const;
 
   const Network &network() const;
   /// The origin of the patches' internal frame in world coordinates: zero,
@@ -266,6 +298,16 @@ private:
   friend struct SurfaceAccess; // engine-internal access for scheme-specific reports
 
   std::shared_ptr<const Impl> impl_;
+};
+
+/// What Surface::rebuildAfterEdit made.
+struct SurfaceEdit {
+  Surface surface;
+  /// Faces whose patch was rebuilt, ascending; every other face's patch is
+  /// the old surface's own object (shared, not copied).
+  std::vector<int> changedFaces;
+  /// False when the edit needed a full build (see rebuildAfterEdit).
+  bool partial = false;
 };
 
 } // namespace v1

@@ -13,6 +13,8 @@
 // Output is deterministic: identical bytes for any thread count.
 #pragma once
 
+#include <span>
+
 #include "curvenet/mesh.hpp"
 #include "curvenet/surface.hpp"
 
@@ -65,6 +67,19 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options = {})
 /// the planned or pointwise path of tessellate(). Threads as
 /// options.threads; output independent of the thread count. Thread-safe.
 std::vector<Vec3> evaluateFaceInteriors(const Surface &surface, const TessellationOptions &options = {});
+
+/// After an edit (Surface::rebuildAfterEdit, same topology): updates `mesh`,
+/// which holds tessellate(before, options) of the surface before the edit,
+/// to equal tessellate(surface, options) bit for bit, re-evaluating only
+/// `faces` (the edit's changedFaces): their interior samples through the
+/// cached plans, the samples of their segments, the boundary normals they
+/// own, and their triangles. Vertex and triangle numbering stay. Cost:
+/// proportional to the listed faces' samples plus a topology walk over the
+/// boundaries. InputError for a face index out of range; an engine check
+/// fails when the mesh does not have this surface's layout at
+/// options.resolution. Thread-safe for distinct meshes.
+void retessellateFaces(const Surface &surface, std::span<const int> faces, Mesh &mesh,
+                       const TessellationOptions &options = {});
 
 } // namespace v1
 } // namespace curvenet

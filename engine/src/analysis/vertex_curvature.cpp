@@ -34,40 +34,43 @@ Vec3 VertexCurvature::shape(const Vec3 &v) const {
 
 std::vector<VertexCurvature> fitVertexCurvatures(const Network &network, const std::vector<VertexFrame> &frames) {
   std::vector<VertexCurvature> result(network.vertices().size());
-  for (size_t v = 0; v < network.vertices().size(); ++v) {
-    const Vertex &vertex = network.vertices()[v];
-    VertexCurvature &vc = result[v];
-    vc.normal = frames[v].normal;
-    vc.xAxis = planeAxis(vc.normal, vertex.tangents.empty() ? Vec3{1, 0, 0} : vertex.tangents[0]);
-    vc.yAxis = cross(vc.normal, vc.xAxis);
-    std::vector<double> omegas, ks;
-    for (size_t j = 0; j < vertex.segments.size(); ++j) {
-      const Segment &seg = network.segments()[vertex.segments[j]];
-      // Which end of the segment is at this vertex: for a closed segment the
-      // one whose outgoing tangent is this entry's.
-      const auto d0 = seg.curve.derivatives(0.0), d1 = seg.curve.derivatives(1.0);
-      bool atStart = seg.start == static_cast<int>(v);
-      if (seg.start == seg.end)
-        atStart = dot(normalized(d0[1]), vertex.tangents[j]) >= dot(normalized(-d1[1]), vertex.tangents[j]);
-      const auto &d = atStart ? d0 : d1;
-      const Vec3 t = vertex.tangents[j];
-      omegas.push_back(std::atan2(dot(t, vc.yAxis), dot(t, vc.xAxis)));
-      ks.push_back(dot(d[2], vc.normal) / dot(d[1], d[1]));
-    }
-    // Two curves meeting smoothly (one loop of a hole, split into arcs; a
-    // curve continued by another) leave in directions that agree only to the
-    // fit accuracy of the curves. Counted as independent, their tiny angle
-    // would turn the difference of their curvatures into a huge twist; the
-    // builder's continuation angle (1e-4) decides instead.
-    FitOptions fitOptions;
-    fitOptions.parallelTolerance = 1e-4;
-    const CurvatureFit fit = fitCurvature(omegas, ks, fitOptions);
-    vc.tensor = fit.tensor;
-    vc.branch = fit.branch;
-    vc.independentDirections = fit.independentDirections;
-    vc.maxResidual = fit.maxResidual;
-  }
+  for (size_t v = 0; v < network.vertices().size(); ++v) result[v] = fitVertexCurvature(network, frames, static_cast<int>(v));
   return result;
+}
+
+VertexCurvature fitVertexCurvature(const Network &network, const std::vector<VertexFrame> &frames, int v) {
+  const Vertex &vertex = network.vertices()[v];
+  VertexCurvature vc;
+  vc.normal = frames[v].normal;
+  vc.xAxis = planeAxis(vc.normal, vertex.tangents.empty() ? Vec3{1, 0, 0} : vertex.tangents[0]);
+  vc.yAxis = cross(vc.normal, vc.xAxis);
+  std::vector<double> omegas, ks;
+  for (size_t j = 0; j < vertex.segments.size(); ++j) {
+    const Segment &seg = network.segments()[vertex.segments[j]];
+    // Which end of the segment is at this vertex: for a closed segment the
+    // one whose outgoing tangent is this entry's.
+    const auto d0 = seg.curve.derivatives(0.0), d1 = seg.curve.derivatives(1.0);
+    bool atStart = seg.start == v;
+    if (seg.start == seg.end)
+      atStart = dot(normalized(d0[1]), vertex.tangents[j]) >= dot(normalized(-d1[1]), vertex.tangents[j]);
+    const auto &d = atStart ? d0 : d1;
+    const Vec3 t = vertex.tangents[j];
+    omegas.push_back(std::atan2(dot(t, vc.yAxis), dot(t, vc.xAxis)));
+    ks.push_back(dot(d[2], vc.normal) / dot(d[1], d[1]));
+  }
+  // Two curves meeting smoothly (one loop of a hole, split into arcs; a
+  // curve continued by another) leave in directions that agree only to the
+  // fit accuracy of the curves. Counted as independent, their tiny angle
+  // would turn the difference of their curvatures into a huge twist; the
+  // builder's continuation angle (1e-4) decides instead.
+  FitOptions fitOptions;
+  fitOptions.parallelTolerance = 1e-4;
+  const CurvatureFit fit = fitCurvature(omegas, ks, fitOptions);
+  vc.tensor = fit.tensor;
+  vc.branch = fit.branch;
+  vc.independentDirections = fit.independentDirections;
+  vc.maxResidual = fit.maxResidual;
+  return vc;
 }
 
 VertexCurvature vertexCurvatureFromReference(const SurfaceFrame &frame, const Vec3 &normal, const Vec3 &xHint) {

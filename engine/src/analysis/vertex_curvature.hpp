@@ -33,6 +33,8 @@ struct VertexCurvature {
 /// the segment ends there, by fitCurvature (which picks the n = 1, 2, 3, > 3
 /// branch). The x axis is the first outgoing tangent projected into the plane.
 std::vector<VertexCurvature> fitVertexCurvatures(const Network &network, const std::vector<VertexFrame> &frames);
+/// The same fit at vertex v alone (what fitVertexCurvatures gives for it).
+VertexCurvature fitVertexCurvature(const Network &network, const std::vector<VertexFrame> &frames, int v);
 
 /// The same tensor read off a reference surface frame, re-signed for `normal`
 /// (which may point to the other side than the reference's normal).

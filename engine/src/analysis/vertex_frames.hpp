@@ -1,6 +1,7 @@
 // Tangent planes at the vertices of a network (issue: G¹ item 1).
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "curvenet/network.hpp"
@@ -20,6 +21,11 @@ struct VertexFrame {
 /// at a corner, (outgoing tangent) × (tangent back along the incoming side)
 /// points outside for counter-clockwise loops.
 std::vector<VertexFrame> computeVertexFrames(const Network &network);
+
+/// Recomputes frames[v] for the listed vertices only (after their curves
+/// changed), bit for bit what computeVertexFrames gives for them. Cost: one
+/// pass over the face corners plus one 3×3 eigenproblem per listed vertex.
+void updateVertexFrames(const Network &network, std::span<const int> vertices, std::vector<VertexFrame> &frames);
 
 } // namespace v1
 } // namespace curvenet

@@ -173,6 +173,43 @@ struct Model::Impl {
     return impl;
   }
 
+  /// The model after replacing its description by `description` (curves
+  /// changed in shape): every group's surface rebuilt by
+  /// Surface::rebuildAfterEdit, so that only the faces near the changed
+  /// curves are rebuilt (a full build where the topology changed).
+  static std::unique_ptr<Impl> edited(const Impl &old, NetworkDescription description) {
+    auto impl = std::make_unique<Impl>();
+    impl->network = Network::build(description);
+    impl->description = std::move(description);
+    impl->faceOptions = old.faceOptions;
+    impl->faceGroup = old.faceGroup;
+    std::vector<int> changed;
+    bool partial = true;
+    for (const Group &g : old.groups) {
+      SurfaceEdit edit = g.surface.rebuildAfterEdit(impl->network);
+      changed.insert(changed.end(), edit.changedFaces.begin(), edit.changedFaces.end());
+      partial = partial && edit.partial;
+      impl->groups.push_back({g.options, std::move(edit.surface)});
+    }
+    CURVENET_CHECK(static_cast<int>(impl->network.faces().size()) == static_cast<int>(impl->faceGroup.size()),
+                   "an edit keeps the faces");
+    std::sort(changed.begin(), changed.end());
+    changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+    // One surface, same topology: the cached whole-network tessellation is
+    // brought up to date on the changed faces only (plans reused), so the
+    // next tessellate at that resolution costs a copy.
+    if (partial && old.whole && impl->groups.size() == 1) {
+      impl->whole = *old.whole;
+      impl->wholeOptions = old.wholeOptions;
+      retessellateFaces(impl->groups[0].surface, changed, *impl->whole, impl->wholeOptions);
+    }
+    impl->lastChangedFaces = std::move(changed);
+    return impl;
+  }
+
+  /// Faces rebuilt by the last edit (Model::lastEditedFaces).
+  std::vector<int> lastChangedFaces;
+
   const Surface &surfaceOf(int face) const { return groups[faceGroup[face]].surface; }
   bool validFace(int face) const { return face >= 0 && face < static_cast<int>(faceGroup.size()); }
 
@@ -331,6 +368,8 @@ const SurfaceOptions &Model::faceOptions(int face) const {
   return impl_->groups[impl_->validFace(face) ? impl_->faceGroup[face] : 0].options;
 }
 
+const std::vector<int> &Model::lastEditedFaces() const { return impl_->lastChangedFaces; }
+
 int Model::surfaceCount() const { return static_cast<int>(impl_->groups.size()); }
 const Network &Model::network() const { return impl_->network; }
 const NetworkDescription &Model::description() const { return impl_->description; }
@@ -470,7 +509,7 @@ Status Model::setCurve(int curve, BSplineCurve replacement) {
           return failure(StatusCode::InvalidInput, faceName(static_cast<int>(f)) + " side " + std::to_string(k),
                          "uses a parameter range outside the new curve's domain");
       }
-    impl_ = Impl::assemble(std::move(description), impl_->faceOptions, nullptr);
+    impl_ = Impl::edited(*impl_, std::move(description));
     return {};
   });
 }

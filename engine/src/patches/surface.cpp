@@ -4,6 +4,10 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <span>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "analysis/vertex_curvature.hpp"
 #include "analysis/vertex_frames.hpp"
@@ -11,6 +15,7 @@
 #include "curvenet/error.hpp"
 #include "curvenet/surface.hpp"
 #include "patches/patch.hpp"
+#include "plans/plan.hpp"
 
 namespace curvenet {
 inline namespace v1 {
@@ -92,35 +97,55 @@ double constrainedTransversal(const std::array<double, 5> &measured, double k0) 
 /// A loop far from convex (a concave corner, a strongly bent side) can make
 /// the map from the regular n-gon fold over itself: the surface normal
 /// du × dv turns over inside the patch. Detected on the n-fold fan grid of
-/// the tessellator at 8 rows (inset a little from the sides, so that
-/// straight-angle corners with vanishing derivatives are avoided): two
-/// neighbouring samples whose normals point into opposite half-spaces. A
-/// smooth patch cannot turn its normal by 90° between samples this close
-/// unless it folds, so no well-formed patch is reported.
+/// the tessellator at 8 rows: two neighbouring samples whose normals point
+/// into opposite half-spaces. A smooth patch cannot turn its normal by 90°
+/// between samples this close unless it folds, so no well-formed patch is
+/// reported. The interior of each centre–side triangle and the centre are
+/// the samples of the cached evaluation plan at resolution 8 (geometry-free,
+/// shared by every face and build: no sweepline root solve per face). The
+/// first row and the spokes are evaluated point by point, inset a little:
+/// from the sides, so that straight-angle corners with vanishing derivatives
+/// are avoided, and from the spokes, where the Hermite sweep of a triangle
+/// has its known fold along the bisector near the corner (surface.hpp,
+/// Sweepline), which the interpolants there barely weigh.
 struct NonFinitePatch {};
 
+constexpr int kFoldRows = 8;
+
 bool patchFolds(const Patch &patch) {
-  constexpr int rows = 8;
+  constexpr int rows = kFoldRows;
   const RegularDomain &domain = patch.domain();
   const int n = domain.sides();
-  auto normalAt = [&](const Vec2 &uv) {
-    const DualVec3 r = patch.evaluate(uv.x, uv.y);
+  auto normalOf = [](const DualVec3 &r) {
     const Vec3 normal = cross(r.du, r.dv);
     if (!std::isfinite(r.v.x + r.v.y + r.v.z + normal.x + normal.y + normal.z)) throw NonFinitePatch{};
     return normal;
   };
+  const std::shared_ptr<const EvaluationPlan> plan = evaluationPlan(planKey(patch.options(), n, rows));
+  std::vector<DualVec3> planned(plan->size());
+  patch.evaluatePlanned(*plan, 0, plan->size(), planned.data());
+  std::vector<Vec3> normals(planned.size());
+  for (std::size_t k = 0; k < planned.size(); ++k) normals[k] = normalOf(planned[k]);
+  // The plan's sample order (plan.hpp): centre, spokes corner-major at levels
+  // 1 … rows − 1 (not used here), then each centre–side triangle's interior
+  // row by row.
+  std::size_t interior = 1 + static_cast<std::size_t>(n) * (rows - 1);
+  auto pointwise = [&](const Vec2 &uv) { return normalOf(patch.evaluate(uv.x, uv.y)); };
   for (int i = 0; i < n; ++i) {
-    std::vector<std::vector<Vec3>> grid(rows);
+    std::vector<std::vector<Vec3>> grid(rows + 1);
     for (int k = 0; k < rows; ++k) {
       const double shrink = 1.0 - (k + 0.02) / rows;
       const Vec2 a = domain.corner(i) * shrink, b = domain.corner(i + 1) * shrink;
       const int m = rows - k;
-      for (int j = 0; j <= m; ++j) grid[k].push_back(normalAt(a + (b - a) * ((j + 0.02) / (m + 0.04))));
+      for (int j = 0; j <= m; ++j)
+        grid[k].push_back(k == 0 || j == 0 || j == m ? pointwise(a + (b - a) * ((j + 0.02) / (m + 0.04)))
+                                                     : normals[interior++]);
     }
-    for (int k = 0; k < rows; ++k)
+    grid[rows].push_back(normals[0]);
+    for (int k = 0; k <= rows; ++k)
       for (size_t j = 0; j < grid[k].size(); ++j) {
         if (j + 1 < grid[k].size() && dot(grid[k][j], grid[k][j + 1]) <= 0) return true;
-        if (k + 1 < rows && j < grid[k + 1].size() && dot(grid[k][j], grid[k + 1][j]) <= 0) return true;
+        if (k < rows && j < grid[k + 1].size() && dot(grid[k][j], grid[k + 1][j]) <= 0) return true;
       }
   }
   return false;
@@ -133,12 +158,20 @@ struct Surface::Impl {
   std::vector<int> folded; ///< faces whose patch folds over itself (see patchFolds)
   Network network;
   SurfaceOptions options;
+  bool referenceFences = false; ///< fence normals from the network's reference surface
   std::vector<VertexFrame> frames;
   std::vector<VertexCurvature> fitted;   ///< fitted from the curves (reported)
   std::vector<VertexCurvature> curvatures; ///< used by gregory-g2
-  std::vector<std::unique_ptr<NormalFence>> fences;
-  std::vector<std::unique_ptr<TransversalCurvature>> edgeCurvatures; ///< gregory-g2
-  std::vector<Patch> patches;
+  // Shared, immutable pieces: a partial rebuild (Surface::rebuildAfterEdit)
+  // copies the Impl and keeps every piece its edit does not touch, so the
+  // ribbons of unchanged patches keep pointing at live fences and curvatures.
+  std::vector<std::shared_ptr<const NormalFence>> fences;
+  std::vector<std::shared_ptr<const TransversalCurvature>> edgeCurvatures; ///< gregory-g2
+  /// gregory-g2 with G¹-measured edge curvature (master–slave, averaging,
+  /// named masters, connection curves): the G¹ surface measured, kept so that
+  /// an edit rebuilds only its faces near the edit.
+  std::shared_ptr<const Surface> g1;
+  std::vector<std::shared_ptr<const Patch>> patches;
   using DomainSide = DomainSideRange;
   /// Per face: the face side and side-parameter range of each domain side.
   std::vector<std::vector<DomainSide>> domainSides;
@@ -151,25 +184,368 @@ const bezier::BezierSurfaceData *SurfaceAccess::bezierData(const Surface &surfac
 }
 
 const Patch *SurfaceAccess::patch(const Surface &surface, int face) {
-  return surface.impl_->bezier ? nullptr : &surface.impl_->patches.at(face);
+  return surface.impl_->bezier ? nullptr : surface.impl_->patches.at(face).get();
 }
 
 namespace {
+using Impl = Surface::Impl;
+
 const RegularDomain &squareDomain() {
   static const RegularDomain domain(4);
   return domain;
 }
+
+/// Runs body(k) for every k in [0, count), in parallel over TBB (one item
+/// per task: a fence or a face costs 0.1–2 ms, far above the task overhead).
+/// Items write disjoint results, so the output does not depend on the thread
+/// count; an exception is rethrown for the lowest failing index, so the
+/// error reported does not depend on scheduling either.
+template <class Body>
+void forEachItem(std::size_t count, Body &&body) {
+  std::vector<std::exception_ptr> errors(count);
+  auto one = [&](std::size_t k) {
+    try {
+      body(k);
+    } catch (...) {
+      errors[k] = std::current_exception();
+    }
+  };
+  if (count < 2) {
+    for (std::size_t k = 0; k < count; ++k) one(k);
+  } else {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 1), [&](const tbb::blocked_range<std::size_t> &r) {
+      for (std::size_t k = r.begin(); k < r.end(); ++k) one(k);
+    });
+  }
+  for (const std::exception_ptr &e : errors)
+    if (e) std::rethrow_exception(e);
+}
+
+std::vector<int> allIndices(std::size_t count) {
+  std::vector<int> all(count);
+  for (std::size_t k = 0; k < count; ++k) all[k] = static_cast<int>(k);
+  return all;
+}
+
+/// A model far from the origin (a 1e6 offset on a unit-size part) would
+/// lose its low digits in every difference the patches take: it is built
+/// translated to its bounding-box centre (Surface::origin). A mesh reference
+/// cannot be moved cheaply, so it keeps the world frame.
+bool needsOriginShift(const Network &network) {
+  const bool meshReference = network.reference() && network.reference()->kind == ReferenceSurface::Kind::Mesh;
+  return norm(network.bounds().center()) > 4 * network.diagonal() && !meshReference;
+}
+
+/// Vertex frames and curvatures of the listed vertices.
+void buildVertexData(Impl &impl, std::span<const int> vertices) {
+  const Network &network = impl.network;
+  updateVertexFrames(network, vertices, impl.frames);
+  impl.fitted.resize(network.vertices().size());
+  impl.curvatures.resize(network.vertices().size());
+  const bool referenceCurvature =
+      impl.options.scheme == Scheme::GregoryG2 && impl.options.edgeCurvature == EdgeCurvature::Reference;
+  for (int v : vertices) {
+    // Vertex normals stay the curves' common tangent plane even with reference
+    // fences: every patch corner reproduces that plane, so a fence that met a
+    // different normal there would break G¹ (see NormalFence::fromNormalField).
+    impl.fitted[v] = fitVertexCurvature(network, impl.frames, v);
+    impl.curvatures[v] = referenceCurvature ? vertexCurvatureFromReference(
+                                                  network.reference()->closest(network.vertices()[v].position),
+                                                  impl.fitted[v].normal, impl.fitted[v].xAxis)
+                                            : impl.fitted[v];
+  }
+}
+
+/// The normal fence of segment e (shared by both faces of the edge).
+std::shared_ptr<const NormalFence> buildFence(const Impl &impl, int e) {
+  const Segment &seg = impl.network.segments()[e];
+  const Vec3 n0 = impl.frames[seg.start].normal, n1 = impl.frames[seg.end].normal;
+  if (impl.referenceFences) {
+    // The reference surface's normal, turned to the side the faces' loops give.
+    const ReferenceSurface &reference = *impl.network.reference();
+    return std::make_shared<const NormalFence>(NormalFence::fromNormalField(
+        seg.curve,
+        [&reference, side = n0](const Vec3 &p) {
+          const Vec3 n = reference.closest(p).normal;
+          return dot(n, side) < 0 ? -n : n;
+        },
+        n0, n1));
+  }
+  if (impl.options.scheme == Scheme::GregoryG2) {
+    // Rotation rates about the tangent that make N' = −S(P') at both ends.
+    const Vec3 t0 = normalized(seg.curve.derivatives(0.0)[1]), t1 = normalized(seg.curve.derivatives(1.0)[1]);
+    const double rate0 = -dot(impl.curvatures[seg.start].shape(t0), cross(t0, n0));
+    const double rate1 = -dot(impl.curvatures[seg.end].shape(t1), cross(t1, n1));
+    return std::make_shared<const NormalFence>(NormalFence::curvatureCompatible(seg.curve, n0, n1, rate0, rate1));
+  }
+  return std::make_shared<const NormalFence>(seg.curve, n0, n1);
+}
+
+/// True when gregory-g2 measures segment `seg`'s transversal curvature on the
+/// G¹ patches (named master, connection curve, master–slave, averaging).
+bool measuredOnG1(const Segment &seg, EdgeCurvature source) {
+  return seg.masterFace >= 0 || seg.connection || source == EdgeCurvature::MasterSlave ||
+         source == EdgeCurvature::Averaging;
+}
+
+/// gregory-g2: the transversal curvature κ_D of segment e, sampled at
+/// kCurvatureIntervals + 1 parameters and interpolated.
+std::shared_ptr<const TransversalCurvature> buildEdgeCurvature(const Impl &impl, int e) {
+  const Network &network = impl.network;
+  const SurfaceOptions &options = impl.options;
+  const Segment &seg = network.segments()[e];
+  const NormalFence &fence = *impl.fences[e];
+  const Surface *g1 = impl.g1.get();
+  // The master face's side of the edge: named (paper 000 Sec. 5.1), or
+  // faces[0] for MasterSlave; -1 averages both (Averaging).
+  // Connection curves: both sides, averaged (-1), like named masters
+  // independent of the source chosen for the other edges.
+  const bool namedMaster = seg.masterFace >= 0 || seg.connection;
+  const int masterSide = seg.masterFace >= 0                                   ? (seg.faces[0] == seg.masterFace ? 0 : 1)
+                         : seg.connection                                      ? -1
+                         : options.edgeCurvature == EdgeCurvature::MasterSlave ? 0
+                                                                               : -1;
+  const bool direct = !namedMaster && options.edgeCurvature == EdgeCurvature::Direct;
+  // Direct: vertex tensors in the fence frame (t, N × t) at both ends, blended
+  // in arc length. The arc lengths to the samples are summed interval by
+  // interval (each quadrature short, none repeated).
+  std::array<WeingartenForm, 2> endForms;
+  std::array<double, kCurvatureIntervals + 1> arc{};
+  if (direct) {
+    for (int end = 0; end < 2; ++end) {
+      const VertexCurvature &vc = impl.curvatures[end == 0 ? seg.start : seg.end];
+      const Vec3 t = normalized(seg.curve.derivatives(end)[1]), b = cross(fence.normal(end), t);
+      endForms[end] = {dot(vc.shape(t), t), dot(vc.shape(b), b), dot(vc.shape(t), b)};
+    }
+    for (int j = 1; j <= kCurvatureIntervals; ++j)
+      arc[j] = arc[j - 1] + seg.curve.arcLength(double(j - 1) / kCurvatureIntervals, double(j) / kCurvatureIntervals);
+  }
+  const double length = arc.back() > 0 ? arc.back() : 1.0;
+  std::vector<double> samples(kCurvatureIntervals + 1);
+  for (int j = 0; j <= kCurvatureIntervals; ++j) {
+    const double u = double(j) / kCurvatureIntervals;
+    const auto c = seg.curve.derivatives(u);
+    Vec3 n, dn;
+    fence.normalAndDerivative(u, c, n, dn);
+    const Vec3 t = normalized(c[1]), d = cross(n, t);
+    const double k0 = dot(c[2], n) / dot(c[1], c[1]);
+    double kappa = 0;
+    if (!namedMaster && options.edgeCurvature == EdgeCurvature::Reference) {
+      const SurfaceFrame frame = network.reference()->closest(c[0]);
+      kappa = (dot(frame.normal, n) < 0 ? -1.0 : 1.0) * frame.normalCurvature(d);
+    } else if (j == 0 || j == kCurvatureIntervals) {
+      kappa = impl.curvatures[j == 0 ? seg.start : seg.end].normalCurvature(d);
+    } else if (direct) {
+      const double x = arc[j] / length;
+      const WeingartenForm w{(1 - x) * endForms[0].w1 + x * endForms[1].w1,
+                             (1 - x) * endForms[0].w2 + x * endForms[1].w2,
+                             (1 - x) * endForms[0].w12 + x * endForms[1].w12};
+      std::array<double, 5> measured;
+      for (size_t k = 0; k < kMeasureAngles.size(); ++k) measured[k] = w.normalCurvature(kMeasureAngles[k]);
+      kappa = constrainedTransversal(measured, k0);
+    } else {
+      CURVENET_CHECK(g1 != nullptr, "segment " + std::to_string(e) + " needs the G¹ surface");
+      std::array<double, 5> measured{};
+      double curveCurvature = 0;
+      int count = 0;
+      for (int side = 0; side < 2; ++side) {
+        const int face = seg.faces[side];
+        if (face < 0 || (masterSide >= 0 && side != masterSide)) continue;
+        const SurfacePoint2 p = g1->evaluateSecondOrder(face, g1->domainPointOnSegment(face, e, u));
+        const double sign = dot(p.normal, n) < 0 ? -1.0 : 1.0;
+        const Vec3 normal = p.normal * sign, b = normalized(cross(normal, t));
+        for (size_t k = 0; k < kMeasureAngles.size(); ++k)
+          measured[k] += sign * p.normalCurvature(t * std::cos(kMeasureAngles[k]) + b * std::sin(kMeasureAngles[k]));
+        curveCurvature += dot(c[2], normal) / dot(c[1], c[1]);
+        ++count;
+      }
+      for (double &m : measured) m /= count;
+      kappa = constrainedTransversal(measured, curveCurvature / count);
+    }
+    samples[j] = kappa;
+  }
+  return std::make_shared<const TransversalCurvature>(samples);
+}
+
+/// One face's patch, its domain sides and whether it folds.
+struct FaceBuild {
+  std::shared_ptr<const Patch> patch;
+  std::vector<Impl::DomainSide> sides;
+  bool folded = false;
+};
+
+FaceBuild buildFace(const Impl &impl, int f) {
+  const Face &face = impl.network.faces()[f];
+  const bool g2 = impl.options.scheme == Scheme::GregoryG2;
+  FaceBuild result;
+  std::vector<Impl::DomainSide> &sides = result.sides;
+  for (int k = 0; k < face.sideCount(); ++k) {
+    if (face.sideCount() == 2) {
+      // Split at the segment break nearest the middle, so that the new
+      // corner is a vertex both neighbours already share; else the middle.
+      double split = 0.5;
+      for (double b : face.sides[k].breaks)
+        if (std::abs(b - 0.5) < std::abs(split - 0.5) || split == 0.5) split = b;
+      sides.push_back({k, 0.0, split});
+      sides.push_back({k, split, 1.0});
+    } else {
+      sides.push_back({k, 0.0, 1.0});
+    }
+  }
+  std::vector<LinearRibbon> ribbons;
+  for (const Impl::DomainSide &ds : sides) {
+    const FaceSide &side = face.sides[ds.faceSide];
+    const double width = ds.sTo - ds.sFrom;
+    BSplineCurve curve = width == 1.0 ? side.curve : side.curve.restricted(ds.sFrom, ds.sTo).reparameterized(0, 1);
+    // Segments of this side, as ranges of the ribbon's own parameter.
+    std::vector<LinearRibbon::Piece> pieces;
+    for (size_t j = 0; j < side.segments.size(); ++j) {
+      const double b0 = j == 0 ? 0.0 : side.breaks[j - 1];
+      const double b1 = j + 1 == side.segments.size() ? 1.0 : side.breaks[j];
+      if (b1 <= ds.sFrom || b0 >= ds.sTo) continue;
+      pieces.push_back({impl.fences[side.segments[j]].get(), (b0 - ds.sFrom) / width, (b1 - ds.sFrom) / width,
+                        side.segmentReversed[j], side.segments[j]});
+    }
+    ribbons.emplace_back(std::move(curve), std::move(pieces));
+  }
+  // End conditions need the neighbouring sides' tangents (DESIGN.md §3).
+  const int n = static_cast<int>(ribbons.size());
+  for (int i = 0; i < n; ++i) {
+    const LinearRibbon &prev = ribbons[(i + n - 1) % n], &next = ribbons[(i + 1) % n];
+    LinearRibbon &ribbon = ribbons[i];
+    const Vec3 startTangent = ribbon.curve().derivatives(0.0)[1], endTangent = ribbon.curve().derivatives(1.0)[1];
+    const Vec3 prevTangent = prev.curve().derivatives(1.0)[1], nextTangent = next.curve().derivatives(0.0)[1];
+    const double startTurn = angleBetween(startTangent, prevTangent);
+    const double endTurn = angleBetween(endTangent, nextTangent);
+    if (std::numbers::pi - startTurn < kCuspAngle)
+      throw InputError("", "face " + std::to_string(f),
+                       "cusp at the start of side " + std::to_string(sides[i].faceSide) +
+                           ": the two curves leave the corner in the same direction");
+    const Vec3 startTarget = startTurn < kStraightAngle ? ribbon.fenceDirection(0.0) : -prevTangent;
+    const Vec3 endTarget = endTurn < kStraightAngle ? ribbon.fenceDirection(1.0) : nextTangent;
+    // gregory-g2: α, β by the quintic blend, so that the nine-term
+    // correction patch meets compatible twists (see ScalarBlend).
+    ribbon.setEndConditions(startTarget, endTarget,
+                            g2 ? LinearRibbon::ScalarBlend::Quintic : LinearRibbon::ScalarBlend::Linear);
+  }
+  std::vector<ParabolicRibbon> parabolic;
+  if (g2)
+    for (const LinearRibbon &ribbon : ribbons) {
+      std::vector<const TransversalCurvature *> curvatures;
+      for (const LinearRibbon::Piece &piece : ribbon.pieces())
+        curvatures.push_back(impl.edgeCurvatures[piece.segment].get());
+      parabolic.emplace_back(ribbon, std::move(curvatures));
+    }
+  result.patch = std::make_shared<const Patch>(std::move(ribbons), impl.options, std::move(parabolic));
+  try {
+    result.folded = patchFolds(*result.patch);
+  } catch (const NonFinitePatch &) {
+    // Degenerate input (e.g. coincident corners after the tolerance, a
+    // collapsed side) that the topology checks let through: refuse it here
+    // rather than hand out NaN points.
+    throw InputError("", "face " + std::to_string(f),
+                     "the patch cannot be evaluated (non-finite points inside the face): the loop is degenerate");
+  }
+  return result;
+}
+
+/// The fences of the listed segments, in parallel.
+void buildEdges(Impl &impl, std::span<const int> fenceSegments) {
+  impl.fences.resize(impl.network.segments().size());
+  forEachItem(fenceSegments.size(), [&](std::size_t k) {
+    impl.fences[fenceSegments[k]] = buildFence(impl, fenceSegments[k]);
+  });
+}
+
+/// gregory-g2: the edge curvatures of the listed segments, in parallel.
+void buildEdgeCurvatures(Impl &impl, std::span<const int> segments) {
+  impl.edgeCurvatures.resize(impl.network.segments().size());
+  forEachItem(segments.size(),
+              [&](std::size_t k) { impl.edgeCurvatures[segments[k]] = buildEdgeCurvature(impl, segments[k]); });
+}
+
+/// The patches of the listed faces, in parallel; the folded list updated.
+void buildFaces(Impl &impl, std::span<const int> faces) {
+  const std::size_t count = impl.network.faces().size();
+  impl.patches.resize(count);
+  impl.domainSides.resize(count);
+  std::vector<FaceBuild> built(faces.size());
+  forEachItem(faces.size(), [&](std::size_t k) { built[k] = buildFace(impl, faces[k]); });
+  std::vector<char> folded(count, 0);
+  for (int f : impl.folded) folded[f] = 1;
+  for (std::size_t k = 0; k < faces.size(); ++k) {
+    impl.patches[faces[k]] = std::move(built[k].patch);
+    impl.domainSides[faces[k]] = std::move(built[k].sides);
+    folded[faces[k]] = built[k].folded;
+  }
+  impl.folded.clear();
+  for (std::size_t f = 0; f < count; ++f)
+    if (folded[f]) impl.folded.push_back(static_cast<int>(f));
+}
+
+bool needsG1Surface(const Network &network, const SurfaceOptions &options) {
+  return options.scheme == Scheme::GregoryG2 &&
+         std::any_of(network.segments().begin(), network.segments().end(),
+                     [&](const Segment &seg) { return measuredOnG1(seg, options.edgeCurvature); });
+}
+
+SurfaceOptions g1Options(const SurfaceOptions &options) {
+  return {Scheme::GregoryG1, Sweepline::Radial, options.fenceNormals};
+}
+
+bool sameCurve(const BSplineCurve &a, const BSplineCurve &b) {
+  return a.degree() == b.degree() && a.knots() == b.knots() && a.controlPoints() == b.controlPoints() &&
+         a.weights() == b.weights();
+}
+
+/// Same vertices, segments, faces and their incidences: what an edit of
+/// curve geometry keeps (see Surface::rebuildAfterEdit).
+bool sameTopology(const Network &a, const Network &b) {
+  if (a.vertices().size() != b.vertices().size() || a.segments().size() != b.segments().size() ||
+      a.faces().size() != b.faces().size() || a.reference().has_value() != b.reference().has_value())
+    return false;
+  for (std::size_t v = 0; v < a.vertices().size(); ++v)
+    if (a.vertices()[v].segments != b.vertices()[v].segments) return false;
+  for (std::size_t e = 0; e < a.segments().size(); ++e) {
+    const Segment &x = a.segments()[e], &y = b.segments()[e];
+    if (x.start != y.start || x.end != y.end || x.faces != y.faces || x.masterFace != y.masterFace ||
+        x.connection != y.connection)
+      return false;
+  }
+  for (std::size_t f = 0; f < a.faces().size(); ++f) {
+    const Face &x = a.faces()[f], &y = b.faces()[f];
+    if (x.sideCount() != y.sideCount()) return false;
+    for (int k = 0; k < x.sideCount(); ++k) {
+      const FaceSide &p = x.sides[k], &q = y.sides[k];
+      if (p.segments != q.segments || p.segmentReversed != q.segmentReversed || p.startVertex != q.startVertex ||
+          p.endVertex != q.endVertex)
+        return false;
+    }
+  }
+  return true;
+}
+
+std::vector<int> sortedUnique(std::vector<int> v) {
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  return v;
+}
+
+/// Faces using any of the segments.
+std::vector<int> facesOf(const Network &network, std::span<const int> segments) {
+  std::vector<int> faces;
+  for (int e : segments)
+    for (int f : network.segments()[e].faces)
+      if (f >= 0) faces.push_back(f);
+  return sortedUnique(std::move(faces));
+}
 } // namespace
 
 Surface Surface::build(const Network &network, const SurfaceOptions &options) {
-  // A model far from the origin (a 1e6 offset on a unit-size part) would
-  // lose its low digits in every difference the patches take: build it
-  // translated to its bounding-box centre, and translate points back on the
-  // way out. A mesh reference cannot be moved cheaply, so it keeps the world frame.
-  const BoundingBox &box = network.bounds();
-  const Vec3 centre = box.center();
-  const bool meshReference = network.reference() && network.reference()->kind == ReferenceSurface::Kind::Mesh;
-  if (norm(centre) > 4 * network.diagonal() && !meshReference) {
+  // A model far from the origin is built translated to its bounding-box
+  // centre, and points are translated back on the way out.
+  if (needsOriginShift(network)) {
+    const Vec3 centre = network.bounds().center();
     NetworkDescription local = network.description();
     for (BSplineCurve &curve : local.curves) {
       std::vector<Vec3> points = curve.controlPoints();
@@ -192,14 +568,15 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
     throw InputError("", "options", "fence normals from the reference surface, but the network has none");
   if (g2 && options.edgeCurvature == EdgeCurvature::Reference && !reference)
     throw InputError("", "options", "edge curvature from the reference surface, but the network has none");
-  const bool referenceFences =
-      options.fenceNormals == FenceNormals::Reference || (options.fenceNormals == FenceNormals::Auto && reference);
 
   auto impl = std::make_shared<Impl>();
   impl->network = network;
   impl->options = options;
-  impl->frames = computeVertexFrames(network);
+  impl->referenceFences =
+      options.fenceNormals == FenceNormals::Reference || (options.fenceNormals == FenceNormals::Auto && reference);
+  const std::vector<int> vertices = allIndices(network.vertices().size());
   if (options.scheme == Scheme::BezierG1 || options.scheme == Scheme::CoonsC0) {
+    impl->frames = computeVertexFrames(network);
     impl->bezier = std::make_shared<const bezier::BezierSurfaceData>(
         bezier::buildBezierSurface(network, options.scheme == Scheme::BezierG1));
     for (size_t f = 0; f < network.faces().size(); ++f)
@@ -208,193 +585,79 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
     surface.impl_ = std::move(impl);
     return surface;
   }
-  // The reference surface's normal, turned to the side the faces' loops give.
-  auto referenceNormal = [&](const Vec3 &point, const Vec3 &side) {
-    const Vec3 n = reference->closest(point).normal;
-    return dot(n, side) < 0 ? -n : n;
-  };
-  // Vertex normals stay the curves' common tangent plane even with reference
-  // fences: every patch corner reproduces that plane, so a fence that met a
-  // different normal there would break G¹ (see NormalFence::fromNormalField).
-  impl->fitted = fitVertexCurvatures(network, impl->frames);
-  impl->curvatures = impl->fitted;
-  if (g2 && options.edgeCurvature == EdgeCurvature::Reference)
-    for (size_t v = 0; v < impl->curvatures.size(); ++v) {
-      const VertexCurvature &fit = impl->fitted[v];
-      impl->curvatures[v] =
-          vertexCurvatureFromReference(reference->closest(network.vertices()[v].position), fit.normal, fit.xAxis);
-    }
-
-  // Fences: one per segment, shared by both faces.
-  for (const Segment &seg : network.segments()) {
-    const Vec3 n0 = impl->frames[seg.start].normal, n1 = impl->frames[seg.end].normal;
-    if (referenceFences) {
-      const Vec3 side = n0;
-      impl->fences.push_back(std::make_unique<NormalFence>(NormalFence::fromNormalField(
-          seg.curve, [&, side](const Vec3 &p) { return referenceNormal(p, side); }, n0, n1)));
-    } else if (g2) {
-      // Rotation rates about the tangent that make N' = −S(P') at both ends.
-      const Vec3 t0 = normalized(seg.curve.derivatives(0.0)[1]), t1 = normalized(seg.curve.derivatives(1.0)[1]);
-      const double rate0 = -dot(impl->curvatures[seg.start].shape(t0), cross(t0, n0));
-      const double rate1 = -dot(impl->curvatures[seg.end].shape(t1), cross(t1, n1));
-      impl->fences.push_back(
-          std::make_unique<NormalFence>(NormalFence::curvatureCompatible(seg.curve, n0, n1, rate0, rate1)));
-    } else {
-      impl->fences.push_back(std::make_unique<NormalFence>(seg.curve, n0, n1));
-    }
-  }
-
-  // Transversal curvature κ_D per segment (gregory-g2).
+  buildVertexData(*impl, vertices);
+  const std::vector<int> segments = allIndices(network.segments().size());
+  buildEdges(*impl, segments);
   if (g2) {
-    std::optional<Surface> g1;
     // Edges with an explicit master (paper 000 Sec. 5.1) take its curvature
     // whatever the source elsewhere, so they need the G¹ patches too.
     // Connection curves (Sec. 5.2) always average the two G¹ patches.
-    const bool explicitMasters = std::any_of(network.segments().begin(), network.segments().end(),
-                                             [](const Segment &seg) { return seg.masterFace >= 0 || seg.connection; });
-    if (options.edgeCurvature == EdgeCurvature::MasterSlave || options.edgeCurvature == EdgeCurvature::Averaging ||
-        explicitMasters)
-      g1 = Surface::build(network, {Scheme::GregoryG1, Sweepline::Radial, options.fenceNormals});
-    for (size_t e = 0; e < network.segments().size(); ++e) {
-      const Segment &seg = network.segments()[e];
-      const NormalFence &fence = *impl->fences[e];
-      std::vector<double> samples(kCurvatureIntervals + 1);
-      // Vertex tensors in the fence frame (t, N × t) at both ends, for the direct blend.
-      std::array<WeingartenForm, 2> endForms;
-      for (int end = 0; end < 2; ++end) {
-        const VertexCurvature &vc = impl->curvatures[end == 0 ? seg.start : seg.end];
-        const Vec3 t = normalized(seg.curve.derivatives(end)[1]), b = cross(fence.normal(end), t);
-        endForms[end] = {dot(vc.shape(t), t), dot(vc.shape(b), b), dot(vc.shape(t), b)};
-      }
-      const double length = seg.curve.arcLength();
-      for (int j = 0; j <= kCurvatureIntervals; ++j) {
-        const double u = double(j) / kCurvatureIntervals;
-        const auto c = seg.curve.derivatives(u);
-        const Vec3 n = fence.normal(u), t = normalized(c[1]), d = cross(n, t);
-        const double k0 = dot(c[2], n) / dot(c[1], c[1]);
-        double kappa = 0;
-        // The master face's side of the edge: named (paper 000 Sec. 5.1), or
-        // faces[0] for MasterSlave; -1 averages both (Averaging).
-        // Connection curves: both sides, averaged (-1), like named masters
-        // independent of the source chosen for the other edges.
-        const bool namedMaster = seg.masterFace >= 0 || seg.connection;
-        const int masterSide = seg.masterFace >= 0 ? (seg.faces[0] == seg.masterFace ? 0 : 1)
-                               : seg.connection ? -1
-                               : options.edgeCurvature == EdgeCurvature::MasterSlave ? 0
-                                                                                    : -1;
-        if (!namedMaster && options.edgeCurvature == EdgeCurvature::Reference) {
-          const SurfaceFrame frame = reference->closest(c[0]);
-          kappa = (dot(frame.normal, n) < 0 ? -1.0 : 1.0) * frame.normalCurvature(d);
-        } else if (j == 0 || j == kCurvatureIntervals) {
-          kappa = impl->curvatures[j == 0 ? seg.start : seg.end].normalCurvature(d);
-        } else if (!namedMaster && options.edgeCurvature == EdgeCurvature::Direct) {
-          const double x = seg.curve.arcLength(0.0, u) / length;
-          const WeingartenForm w{(1 - x) * endForms[0].w1 + x * endForms[1].w1,
-                                 (1 - x) * endForms[0].w2 + x * endForms[1].w2,
-                                 (1 - x) * endForms[0].w12 + x * endForms[1].w12};
-          std::array<double, 5> measured;
-          for (size_t k = 0; k < kMeasureAngles.size(); ++k) measured[k] = w.normalCurvature(kMeasureAngles[k]);
-          kappa = constrainedTransversal(measured, k0);
-        } else {
-          std::array<double, 5> measured{};
-          double curveCurvature = 0;
-          int count = 0;
-          for (int side = 0; side < 2; ++side) {
-            const int face = seg.faces[side];
-            if (face < 0 || (masterSide >= 0 && side != masterSide)) continue;
-            const SurfacePoint2 p = g1->evaluateSecondOrder(face, g1->domainPointOnSegment(face, int(e), u));
-            const double sign = dot(p.normal, n) < 0 ? -1.0 : 1.0;
-            const Vec3 normal = p.normal * sign, b = normalized(cross(normal, t));
-            for (size_t k = 0; k < kMeasureAngles.size(); ++k)
-              measured[k] +=
-                  sign * p.normalCurvature(t * std::cos(kMeasureAngles[k]) + b * std::sin(kMeasureAngles[k]));
-            curveCurvature += dot(c[2], normal) / dot(c[1], c[1]);
-            ++count;
-          }
-          for (double &m : measured) m /= count;
-          kappa = constrainedTransversal(measured, curveCurvature / count);
-        }
-        samples[j] = kappa;
-      }
-      impl->edgeCurvatures.push_back(std::make_unique<TransversalCurvature>(samples));
-    }
+    if (needsG1Surface(network, options))
+      impl->g1 = std::make_shared<const Surface>(Surface::build(network, g1Options(options)));
+    buildEdgeCurvatures(*impl, segments);
   }
-
-  for (size_t f = 0; f < network.faces().size(); ++f) {
-    const Face &face = network.faces()[f];
-    std::vector<Impl::DomainSide> sides;
-    for (int k = 0; k < face.sideCount(); ++k) {
-      if (face.sideCount() == 2) {
-        // Split at the segment break nearest the middle, so that the new
-        // corner is a vertex both neighbours already share; else the middle.
-        double split = 0.5;
-        for (double b : face.sides[k].breaks)
-          if (std::abs(b - 0.5) < std::abs(split - 0.5) || split == 0.5) split = b;
-        sides.push_back({k, 0.0, split});
-        sides.push_back({k, split, 1.0});
-      } else {
-        sides.push_back({k, 0.0, 1.0});
-      }
-    }
-    std::vector<LinearRibbon> ribbons;
-    for (const Impl::DomainSide &ds : sides) {
-      const FaceSide &side = face.sides[ds.faceSide];
-      const double width = ds.sTo - ds.sFrom;
-      BSplineCurve curve = width == 1.0 ? side.curve : side.curve.restricted(ds.sFrom, ds.sTo).reparameterized(0, 1);
-      // Segments of this side, as ranges of the ribbon's own parameter.
-      std::vector<LinearRibbon::Piece> pieces;
-      for (size_t j = 0; j < side.segments.size(); ++j) {
-        const double b0 = j == 0 ? 0.0 : side.breaks[j - 1];
-        const double b1 = j + 1 == side.segments.size() ? 1.0 : side.breaks[j];
-        if (b1 <= ds.sFrom || b0 >= ds.sTo) continue;
-        pieces.push_back({impl->fences[side.segments[j]].get(), (b0 - ds.sFrom) / width, (b1 - ds.sFrom) / width,
-                          side.segmentReversed[j], side.segments[j]});
-      }
-      ribbons.emplace_back(std::move(curve), std::move(pieces));
-    }
-    // End conditions need the neighbouring sides' tangents (DESIGN.md §3).
-    const int n = static_cast<int>(ribbons.size());
-    for (int i = 0; i < n; ++i) {
-      const LinearRibbon &prev = ribbons[(i + n - 1) % n], &next = ribbons[(i + 1) % n];
-      LinearRibbon &ribbon = ribbons[i];
-      const Vec3 startTangent = ribbon.curve().derivatives(0.0)[1], endTangent = ribbon.curve().derivatives(1.0)[1];
-      const Vec3 prevTangent = prev.curve().derivatives(1.0)[1], nextTangent = next.curve().derivatives(0.0)[1];
-      const double startTurn = angleBetween(startTangent, prevTangent);
-      const double endTurn = angleBetween(endTangent, nextTangent);
-      if (std::numbers::pi - startTurn < kCuspAngle)
-        throw InputError("", "face " + std::to_string(f),
-                         "cusp at the start of side " + std::to_string(sides[i].faceSide) +
-                             ": the two curves leave the corner in the same direction");
-      const Vec3 startTarget = startTurn < kStraightAngle ? ribbon.fenceDirection(0.0) : -prevTangent;
-      const Vec3 endTarget = endTurn < kStraightAngle ? ribbon.fenceDirection(1.0) : nextTangent;
-      // gregory-g2: α, β by the quintic blend, so that the nine-term
-      // correction patch meets compatible twists (see ScalarBlend).
-      ribbon.setEndConditions(startTarget, endTarget,
-                              g2 ? LinearRibbon::ScalarBlend::Quintic : LinearRibbon::ScalarBlend::Linear);
-    }
-    std::vector<ParabolicRibbon> parabolic;
-    if (g2)
-      for (const LinearRibbon &ribbon : ribbons) {
-        std::vector<const TransversalCurvature *> curvatures;
-        for (const LinearRibbon::Piece &piece : ribbon.pieces())
-          curvatures.push_back(impl->edgeCurvatures[piece.segment].get());
-        parabolic.emplace_back(ribbon, std::move(curvatures));
-      }
-    impl->patches.emplace_back(std::move(ribbons), options, std::move(parabolic));
-    impl->domainSides.push_back(std::move(sides));
-    try {
-      if (patchFolds(impl->patches.back())) impl->folded.push_back(static_cast<int>(f));
-    } catch (const NonFinitePatch &) {
-      // Degenerate input (e.g. coincident corners after the tolerance, a
-      // collapsed side) that the topology checks let through: refuse it here
-      // rather than hand out NaN points.
-      throw InputError("", "face " + std::to_string(f),
-                       "the patch cannot be evaluated (non-finite points inside the face): the loop is degenerate");
-    }
-  }
+  buildFaces(*impl, allIndices(network.faces().size()));
   Surface surface;
   surface.impl_ = std::move(impl);
   return surface;
+}
+
+SurfaceEdit Surface::rebuildAfterEdit(const Network &edited) const {
+  const Impl &old = *impl_;
+  const bool partial = !old.bezier && old.origin == Vec3{} && !needsOriginShift(edited) &&
+                       sameTopology(old.network, edited);
+  if (!partial) return {build(edited, old.options), allIndices(edited.faces().size()), false};
+
+  // What the edit touched: segments whose curve changed (and those of face
+  // sides whose curve changed, which carry the same source-curve range).
+  std::vector<int> changed;
+  for (std::size_t e = 0; e < edited.segments().size(); ++e)
+    if (!sameCurve(old.network.segments()[e].curve, edited.segments()[e].curve)) changed.push_back(static_cast<int>(e));
+  for (std::size_t f = 0; f < edited.faces().size(); ++f)
+    for (int k = 0; k < edited.faces()[f].sideCount(); ++k)
+      if (!sameCurve(old.network.faces()[f].sides[k].curve, edited.faces()[f].sides[k].curve))
+        for (int e : edited.faces()[f].sides[k].segments) changed.push_back(e);
+  changed = sortedUnique(std::move(changed));
+
+  auto impl = std::make_shared<Impl>(old);
+  impl->network = edited;
+  // The frames and curvatures of the changed segments' end vertices (every
+  // curve at a vertex enters its tangent plane and curvature fit); then the
+  // fences of every segment at those vertices (their end normals and rates).
+  std::vector<int> vertices;
+  for (int e : changed) vertices.push_back(edited.segments()[e].start), vertices.push_back(edited.segments()[e].end);
+  vertices = sortedUnique(std::move(vertices));
+  buildVertexData(*impl, vertices);
+  std::vector<int> fenceSegments = changed;
+  for (int v : vertices)
+    fenceSegments.insert(fenceSegments.end(), edited.vertices()[v].segments.begin(), edited.vertices()[v].segments.end());
+  fenceSegments = sortedUnique(std::move(fenceSegments));
+  buildEdges(*impl, fenceSegments);
+
+  std::vector<int> curvatureSegments;
+  if (old.options.scheme == Scheme::GregoryG2) {
+    curvatureSegments = fenceSegments;
+    if (old.g1) {
+      // A segment measured on the G¹ patches changes with any of its faces'
+      // G¹ patches, which change with their own fences.
+      SurfaceEdit g1 = old.g1->rebuildAfterEdit(edited);
+      impl->g1 = std::make_shared<const Surface>(std::move(g1.surface));
+      for (int f : g1.changedFaces)
+        for (const FaceSide &side : edited.faces()[f].sides)
+          for (int e : side.segments)
+            if (measuredOnG1(edited.segments()[e], old.options.edgeCurvature)) curvatureSegments.push_back(e);
+      curvatureSegments = sortedUnique(std::move(curvatureSegments));
+    }
+    buildEdgeCurvatures(*impl, curvatureSegments);
+  }
+
+  std::vector<int> touched = fenceSegments;
+  touched.insert(touched.end(), curvatureSegments.begin(), curvatureSegments.end());
+  std::vector<int> faces = facesOf(edited, sortedUnique(std::move(touched)));
+  buildFaces(*impl, faces);
+  Surface surface;
+  surface.impl_ = std::move(impl);
+  return {std::move(surface), std::move(faces), true};
 }
 
 const Network &Surface::network() const { return impl_->network; }
@@ -405,10 +668,10 @@ int Surface::faceCount() const {
   return static_cast<int>(impl_->bezier ? impl_->bezier->faces.size() : impl_->patches.size());
 }
 int Surface::domainSides(int face) const {
-  return impl_->bezier ? 4 : impl_->patches.at(face).domain().sides();
+  return impl_->bezier ? 4 : impl_->patches.at(face)->domain().sides();
 }
 Vec2 Surface::domainCorner(int face, int corner) const {
-  return impl_->bezier ? squareDomain().corner(corner) : impl_->patches.at(face).domain().corner(corner);
+  return impl_->bezier ? squareDomain().corner(corner) : impl_->patches.at(face)->domain().corner(corner);
 }
 
 Surface::DomainSideRange Surface::domainSideRange(int face, int domainSide) const {
@@ -420,7 +683,7 @@ Vec2 Surface::domainPointOnFaceSide(int face, int side, double s) const {
   for (size_t i = 0; i < sides.size(); ++i) {
     const auto &ds = sides[i];
     if (ds.faceSide == side && s <= ds.sTo)
-      return (impl_->bezier ? squareDomain() : impl_->patches[face].domain()).pointOnSide(static_cast<int>(i), (s - ds.sFrom) / (ds.sTo - ds.sFrom));
+      return (impl_->bezier ? squareDomain() : impl_->patches[face]->domain()).pointOnSide(static_cast<int>(i), (s - ds.sFrom) / (ds.sTo - ds.sFrom));
   }
   throw InputError("", "face " + std::to_string(face), "no side " + std::to_string(side));
 }
@@ -447,7 +710,7 @@ void Surface::evaluatePositions(int face, std::span<const Vec2> uv, std::span<Ve
     for (std::size_t k = 0; k < uv.size(); ++k) out[k] = evaluate(face, uv[k]).point;
     return;
   }
-  const Patch &patch = impl_->patches.at(face);
+  const Patch &patch = *impl_->patches.at(face);
   constexpr std::size_t kChunk = 1024;
   thread_local std::vector<double> scratch;
   scratch.resize(5 * kChunk);
@@ -476,7 +739,7 @@ SurfacePoint Surface::evaluate(int face, const Vec2 &uv) const {
     }
     return {p.point + impl_->origin, p.du / width, p.dv / width, normalized(normal)};
   }
-  const Patch &patch = impl_->patches.at(face);
+  const Patch &patch = *impl_->patches.at(face);
   const DualVec3 r = patch.evaluate(uv.x, uv.y);
   Vec3 normal = cross(r.du, r.dv);
   // Parallel derivatives happen only at straight-angle corners; the normal
@@ -492,7 +755,7 @@ SurfacePoint2 Surface::evaluateSecondOrder(int face, const Vec2 &uv, double step
   if (!(step >= 1e-8 && step <= 1e-2)) throw InputError("", "step", "must lie in [1e-8, 1e-2]");
   if (impl_->options.scheme == Scheme::GregoryG2) {
     // Exact: hyper-dual evaluation.
-    const Dual2Vec3 r = impl_->patches.at(face).evaluateSecondOrder(uv.x, uv.y);
+    const Dual2Vec3 r = impl_->patches.at(face)->evaluateSecondOrder(uv.x, uv.y);
     SurfacePoint2 p;
     static_cast<SurfacePoint &>(p) = evaluate(face, uv);
     p.duu = r.duu, p.duv = r.duv, p.dvv = r.dvv;

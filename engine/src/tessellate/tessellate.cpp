@@ -135,13 +135,16 @@ struct Tile {
   std::size_t first, count;
 };
 
-/// Every face's plan and the tiles of its samples.
+/// The plan and the tiles of samples of every face `wanted` accepts.
+template <class Wanted>
 std::vector<Tile> planTiles(const Surface &surface, int resolution,
-                            std::vector<std::shared_ptr<const EvaluationPlan>> &plans, std::size_t &total) {
+                            std::vector<std::shared_ptr<const EvaluationPlan>> &plans, std::size_t &total,
+                            const Wanted &wanted) {
   std::vector<Tile> tiles;
   total = 0;
   plans.assign(static_cast<std::size_t>(surface.faceCount()), nullptr);
   for (int f = 0; f < surface.faceCount(); ++f) {
+    if (!wanted(f)) continue;
     plans[f] = evaluationPlan(planKey(surface.options(), surface.domainSides(f), resolution));
     const std::size_t size = plans[f]->size();
     for (std::size_t k = 0; k < size; k += kTileSamples) tiles.push_back({f, k, std::min(kTileSamples, size - k)});
@@ -179,7 +182,7 @@ std::vector<Vec3> evaluateFaceInteriors(const Surface &surface, const Tessellati
   if (options.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, options.threads);
   std::vector<std::shared_ptr<const EvaluationPlan>> plans;
   std::size_t total = 0;
-  const std::vector<Tile> tiles = planTiles(surface, options.resolution, plans, total);
+  const std::vector<Tile> tiles = planTiles(surface, options.resolution, plans, total, [](int) { return true; });
   std::vector<std::size_t> faceBase(static_cast<std::size_t>(faces) + 1, 0);
   for (int f = 0; f < faces; ++f) faceBase[f + 1] = faceBase[f] + plans[f]->size();
   std::vector<Vec3> points(total);
@@ -201,38 +204,57 @@ std::size_t estimateMeshVertices(const Surface &surface, int resolution) {
   return count;
 }
 
-Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
+namespace {
+/// Fills `mesh` with the tessellation of `surface` (see the header), or —
+/// with `only` — re-evaluates only the faces f with only[f] set in a mesh
+/// that already holds the whole tessellation of a surface of the same
+/// topology: their interior samples, their boundary samples and the normals
+/// those faces own, and their triangles. Everything is computed exactly as a
+/// full run computes it, so the result equals a full tessellation.
+void tessellateInto(const Surface &surface, const TessellationOptions &options, const std::vector<char> *only,
+                    Mesh &mesh) {
   if (options.resolution < 1) throw InputError("", "resolution", "must be at least 1");
   const Network &net = surface.network();
   const int r = options.resolution;
   const Layout layout = makeLayout(surface, r);
   const int faces = surface.faceCount();
+  auto wanted = [&](int f) { return !only || (*only)[f]; };
 
   std::optional<tbb::global_control> limit;
   if (options.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, options.threads);
 
-  Mesh mesh;
-  mesh.positions.resize(layout.vertexCount);
-  mesh.normals.resize(layout.vertexCount);
   const bool record = options.recordDomainPoints;
-  if (record) mesh.domainPoints.resize(layout.vertexCount);
+  if (only) {
+    CURVENET_CHECK(mesh.positions.size() == layout.vertexCount && mesh.normals.size() == layout.vertexCount &&
+                       mesh.faceTriangleStart.size() == static_cast<std::size_t>(faces) + 1 &&
+                       mesh.domainPoints.size() == (record ? layout.vertexCount : 0),
+                   "re-tessellation of a mesh with another layout, resolution or domain-point setting");
+  } else {
+    mesh.positions.resize(layout.vertexCount);
+    mesh.normals.resize(layout.vertexCount);
+    if (record) mesh.domainPoints.resize(layout.vertexCount);
+  }
   std::vector<std::vector<std::vector<RowPoint>>> rows(faces);
   tbb::parallel_for(0, faces, [&](int f) { rows[f] = boundaryRows(surface, layout, f); });
 
   // Boundary positions come from the curves themselves; their normals from
   // the lowest-numbered face that shows them (deterministic).
   for (size_t v = 0; v < net.vertices().size(); ++v) mesh.positions[v] = net.vertices()[v].position;
-  for (size_t e = 0; e < net.segments().size(); ++e)
+  for (size_t e = 0; e < net.segments().size(); ++e) {
+    const auto &adjacent = net.segments()[e].faces;
+    if (!std::any_of(adjacent.begin(), adjacent.end(), [&](int f) { return f >= 0 && wanted(f); })) continue;
     for (int j = 1; j < layout.segmentIntervals[e]; ++j)
       mesh.positions[segmentSampleId(net, layout, static_cast<int>(e), j)] =
           net.segments()[e].curve.point(double(j) / layout.segmentIntervals[e]);
+  }
   std::vector<char> hasNormal(layout.vertexCount, 0);
   for (int f = 0; f < faces; ++f)
     for (const auto &row : rows[f])
       for (const RowPoint &p : row)
         if (!hasNormal[p.id]) {
-          mesh.normals[p.id] = surface.evaluate(f, p.domain).normal;
           hasNormal[p.id] = 1;
+          if (!wanted(f)) continue; // owned by a face kept as it was
+          mesh.normals[p.id] = surface.evaluate(f, p.domain).normal;
           if (record) mesh.domainPoints[p.id] = {f, p.domain};
         }
 
@@ -243,7 +265,7 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
   const Vec3 origin = surface.origin(); // patches evaluate in the surface's own frame
   if (planned) {
     std::size_t total = 0;
-    const std::vector<Tile> tiles = planTiles(surface, r, plans, total);
+    const std::vector<Tile> tiles = planTiles(surface, r, plans, total, wanted);
     forEachTile(tiles, total, [&](const Tile &tile) {
       thread_local std::vector<DualVec3> values;
       values.resize(tile.count);
@@ -267,6 +289,7 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
 
   std::vector<std::vector<std::array<std::uint32_t, 3>>> triangles(faces);
   tbb::parallel_for(0, faces, [&](int f) {
+    if (!wanted(f)) return;
     const int n = surface.domainSides(f);
     const std::uint32_t base = layout.faceBase[f];
     const std::uint32_t centre = base;
@@ -309,12 +332,40 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
     }
   });
 
+  if (only) {
+    // The same topology gives every face the same triangle count; only the
+    // zipping order along sides with T-nodes can move with the curves.
+    for (int f = 0; f < faces; ++f) {
+      if (!wanted(f)) continue;
+      const std::uint32_t start = mesh.faceTriangleStart[f];
+      CURVENET_CHECK(triangles[f].size() == mesh.faceTriangleStart[f + 1] - start,
+                     "face " + std::to_string(f) + " changed its triangle count");
+      std::copy(triangles[f].begin(), triangles[f].end(), mesh.triangles.begin() + start);
+    }
+    return;
+  }
   mesh.faceTriangleStart.push_back(0);
   for (int f = 0; f < faces; ++f) {
     mesh.triangles.insert(mesh.triangles.end(), triangles[f].begin(), triangles[f].end());
     mesh.faceTriangleStart.push_back(static_cast<std::uint32_t>(mesh.triangles.size()));
   }
+}
+} // namespace
+
+Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
+  Mesh mesh;
+  tessellateInto(surface, options, nullptr, mesh);
   return mesh;
+}
+
+void retessellateFaces(const Surface &surface, std::span<const int> faces, Mesh &mesh,
+                       const TessellationOptions &options) {
+  std::vector<char> only(static_cast<std::size_t>(surface.faceCount()), 0);
+  for (int f : faces) {
+    if (f < 0 || f >= surface.faceCount()) throw InputError("", "face " + std::to_string(f), "no such face");
+    only[f] = 1;
+  }
+  tessellateInto(surface, options, &only, mesh);
 }
 
 } // namespace v1
