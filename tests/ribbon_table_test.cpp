@@ -107,7 +107,7 @@ TEST(PlannedPositions, MatchPointwiseEvaluationOnEveryBuiltin) {
   }
 }
 
-TEST(BatchPositions, MatchPointwiseEvaluationAtRandomDomainPoints) {
+TEST(BatchEvaluation, MatchesPointwiseEvaluationAtRandomDomainPoints) {
   std::mt19937 rng(9);
   std::uniform_real_distribution<double> unit(0, 1);
   for (const BuiltinInfo &info : builtinNetworks()) {
@@ -118,7 +118,7 @@ TEST(BatchPositions, MatchPointwiseEvaluationAtRandomDomainPoints) {
       const Surface surface = Surface::build(network, o);
       BoundingBox box;
       for (const Vertex &v : network.vertices()) box.add(v.position);
-      double worst = 0;
+      double worst = 0, worstJet = 0;
       for (int f = 0; f < surface.faceCount(); ++f) {
         const Patch &patch = *SurfaceAccess::patch(surface, f);
         const int n = surface.domainSides(f);
@@ -134,10 +134,17 @@ TEST(BatchPositions, MatchPointwiseEvaluationAtRandomDomainPoints) {
         std::vector<double> x(u.size()), y(u.size()), z(u.size());
         double *out[3] = {x.data(), y.data(), z.data()};
         patch.evaluatePositions(u.size(), u.data(), v.data(), out);
-        for (std::size_t k = 0; k < u.size(); ++k)
-          worst = std::max(worst, norm(Vec3{x[k], y[k], z[k]} - patch.evaluate(u[k], v[k]).v));
+        std::vector<DualVec3> jets(u.size());
+        patch.evaluateBatch(u.size(), u.data(), v.data(), jets.data());
+        for (std::size_t k = 0; k < u.size(); ++k) {
+          const DualVec3 p = patch.evaluate(u[k], v[k]);
+          worst = std::max(worst, norm(Vec3{x[k], y[k], z[k]} - p.v));
+          worstJet = std::max({worstJet, norm(jets[k].v - p.v), norm(jets[k].du - p.du) / (1 + norm(p.du)),
+                               norm(jets[k].dv - p.dv) / (1 + norm(p.dv))});
+        }
       }
       EXPECT_LE(worst, 1e-12 * box.diagonal()) << info.name << " " << schemeName(o.scheme);
+      EXPECT_LE(worstJet, 1e-11 * (1 + box.diagonal())) << info.name << " " << schemeName(o.scheme) << " (with derivatives)";
     }
   }
 }

@@ -130,16 +130,29 @@ bool patchFolds(const Patch &patch) {
   // 1 … rows − 1 (not used here), then each centre–side triangle's interior
   // row by row.
   std::size_t interior = 1 + static_cast<std::size_t>(n) * (rows - 1);
-  auto pointwise = [&](const Vec2 &uv) { return normalOf(patch.evaluate(uv.x, uv.y)); };
+  // The first row and the spokes, inset, all in one batch.
+  std::vector<double> us, vs;
+  auto inset = [&](int i, int k, int j) {
+    const double shrink = 1.0 - (k + 0.02) / rows;
+    const Vec2 a = domain.corner(i) * shrink, b = domain.corner(i + 1) * shrink;
+    return a + (b - a) * ((j + 0.02) / (rows - k + 0.04));
+  };
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < rows; ++k)
+      for (int j = 0; j <= rows - k; ++j)
+        if (k == 0 || j == 0 || j == rows - k) {
+          const Vec2 uv = inset(i, k, j);
+          us.push_back(uv.x), vs.push_back(uv.y);
+        }
+  std::vector<DualVec3> edge(us.size());
+  patch.evaluateBatch(us.size(), us.data(), vs.data(), edge.data());
+  std::size_t next = 0;
   for (int i = 0; i < n; ++i) {
     std::vector<std::vector<Vec3>> grid(rows + 1);
     for (int k = 0; k < rows; ++k) {
-      const double shrink = 1.0 - (k + 0.02) / rows;
-      const Vec2 a = domain.corner(i) * shrink, b = domain.corner(i + 1) * shrink;
       const int m = rows - k;
       for (int j = 0; j <= m; ++j)
-        grid[k].push_back(k == 0 || j == 0 || j == m ? pointwise(a + (b - a) * ((j + 0.02) / (m + 0.04)))
-                                                     : normals[interior++]);
+        grid[k].push_back(k == 0 || j == 0 || j == m ? normalOf(edge[next++]) : normals[interior++]);
     }
     grid[rows].push_back(normals[0]);
     for (int k = 0; k <= rows; ++k)

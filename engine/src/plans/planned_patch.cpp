@@ -286,6 +286,17 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
     return;
   }
 
+  thread_local std::vector<Dual> sides, blends;
+  sides.resize(static_cast<std::size_t>(n) * count), blends.resize(static_cast<std::size_t>(n) * count);
+  for (int i = 0; i < n; ++i)
+    for (std::size_t k = 0; k < count; ++k)
+      sides[i * count + k] = plan.side(i, first + k), blends[i * count + k] = plan.blend(i, first + k);
+  gregoryJetsFrom(count, sides.data(), blends.data(), plan.key().resolution >= kTableResolution, out);
+}
+
+void Patch::gregoryJetsFrom(std::size_t count, const Dual *sides, const Dual *blends, bool useTables,
+                            DualVec3 *out) const {
+  const int n = domain_.sides();
   const bool g2 = options_.scheme == Scheme::GregoryG2;
   thread_local Scratch scratch;
   const std::size_t jetArrays = g2 ? 18 : 12;
@@ -304,16 +315,16 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
   // side — from the tables at high resolutions, else exactly (the plan's
   // samples run along rows, so consecutive side parameters mostly share a
   // knot span).
-  const PatchTables *tables = plan.key().resolution >= kTableResolution ? &this->tables() : nullptr;
+  const PatchTables *tables = useTables ? &this->tables() : nullptr;
   thread_local std::vector<double> at;
   thread_local std::vector<RibbonJet> linearJets;
   thread_local std::vector<ParabolicJet> parabolicJets;
   at.resize(count);
   for (int i = 0; i < n; ++i) {
     for (std::size_t k = 0; k < count; ++k) {
-      const Dual s = plan.side(i, first + k);
+      const Dual s = sides[i * count + k];
       side[i].set(k, s);
-      blend[i].set(k, plan.blend(i, first + k));
+      blend[i].set(k, blends[i * count + k]);
       at[k] = ribbons_[i].snap(std::clamp(s.v, 0.0, 1.0));
     }
     if (tables) {
@@ -362,6 +373,48 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
     out[k] = {{result[0][k], result[1][k], result[2][k]},
               {result[3][k], result[4][k], result[5][k]},
               {result[6][k], result[7][k], result[8][k]}};
+}
+
+void Patch::evaluateBatch(std::size_t count, const double *u, const double *v, DualVec3 *out) const {
+  const int n = domain_.sides();
+  const bool gregory = options_.scheme == Scheme::GregoryG1 || options_.scheme == Scheme::GregoryG2;
+  if (!gregory || options_.sweepline == Sweepline::QuinticHermite) {
+    for (std::size_t k = 0; k < count; ++k) out[k] = evaluate(u[k], v[k]);
+    return;
+  }
+  const bool g2 = options_.scheme == Scheme::GregoryG2, radial = options_.sweepline == Sweepline::Radial;
+  thread_local std::vector<Dual> sides, blends;
+  thread_local std::vector<double> x, y, roots, unused;
+  sides.resize(static_cast<std::size_t>(n) * count), blends.resize(static_cast<std::size_t>(n) * count);
+  x.resize(count), y.resize(count), roots.resize(count), unused.resize(count);
+  for (int i = 0; i < n; ++i) {
+    if (!radial) {
+      // Side i's frame coordinates, then all its cubic Hermite roots in one batched solve.
+      for (std::size_t k = 0; k < count; ++k) {
+        Dual fx, fy;
+        domain_.sideFrame(i, Dual::u(u[k]), Dual::vCoord(v[k]), fx, fy);
+        x[k] = fx.v, y[k] = fy.v;
+      }
+      kernels::hermiteSweepRoots(count, domain_.sweepFrame(i), x.data(), y.data(), roots.data(), unused.data());
+    }
+    for (std::size_t k = 0; k < count; ++k) {
+      const Dual du = Dual::u(u[k]), dv = Dual::vCoord(v[k]);
+      sides[i * count + k] = radial ? domain_.radialSideParameter(i, du, dv)
+                                    : domain_.hermiteSweepFromRoot(i, du, dv, roots[k]).s;
+    }
+  }
+  // Corner blends in product form (m = 2 for G¹, 3 for G²), as Patch::evaluate.
+  for (std::size_t k = 0; k < count; ++k) {
+    const Dual du = Dual::u(u[k]), dv = Dual::vCoord(v[k]);
+    std::array<Dual, kMaxSides> power, product;
+    for (int j = 0; j < n; ++j) {
+      const Dual distance = domain_.perpendicularDistance(j, du, dv);
+      power[j] = g2 ? distance * distance * distance : distance * distance;
+    }
+    const Dual total = domain_.cornerProducts(power, product);
+    for (int i = 0; i < n; ++i) blends[i * count + k] = product[i] / total;
+  }
+  gregoryJetsFrom(count, sides.data(), blends.data(), false, out);
 }
 
 } // namespace v1
