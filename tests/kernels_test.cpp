@@ -137,6 +137,24 @@ SideFrame sideZeroFrame(int n) {
   return {f, p0, e};
 }
 
+/// `count` uniformly random points strictly inside the regular n-gon, in
+/// side 0's frame (x along the side, y the distance into the domain).
+void randomInteriorPoints(int n, std::size_t count, std::mt19937_64 &rng, std::vector<double> &x,
+                          std::vector<double> &y) {
+  const RegularDomain domain(n);
+  const SideFrame side = sideZeroFrame(n);
+  std::uniform_real_distribution<double> u(-1, 1);
+  while (x.size() < count) {
+    const Vec2 q{u(rng), u(rng)};
+    bool inside = true;
+    for (int i = 0; i < n && inside; ++i) inside = domain.perpendicularDistance(i, q.x, q.y).v > 0;
+    if (!inside) continue;
+    const Vec2 r = q - side.p0;
+    x.push_back(dot(r, side.e) / dot(side.e, side.e));
+    y.push_back(cross(side.e, r) / dot(side.e, side.e));
+  }
+}
+
 /// Independent solver: F from its definition (H(1 − s) evaluated as such),
 /// its power-basis coefficients by interpolation at five nodes, the real
 /// roots as companion-matrix eigenvalues, polished by Newton on F itself;
@@ -203,18 +221,9 @@ TEST(Kernels, SweepSolverMatchesEigenvaluesScalarSolverAndAcrossWidths) {
   std::mt19937_64 rng(3);
   for (int n = 3; n <= 8; ++n) {
     const RegularDomain domain(n);
-    const SideFrame side = sideZeroFrame(n);
     std::vector<double> x, y;
-    std::uniform_real_distribution<double> u(-1, 1);
-    while (x.size() < count) {
-      const Vec2 q{u(rng), u(rng)};
-      bool inside = true;
-      for (int i = 0; i < n && inside; ++i) inside = domain.perpendicularDistance(i, q.x, q.y).v > 0;
-      if (!inside) continue;
-      const Vec2 r = q - side.p0;
-      x.push_back(dot(r, side.e) / dot(side.e, side.e));
-      y.push_back(cross(side.e, r) / dot(side.e, side.e));
-    }
+    randomInteriorPoints(n, count, rng, x, y);
+    const SideFrame side = sideZeroFrame(n);
     std::vector<double> sRef(count), dRef(count);
     ck::hermiteSweepRoots(count, side.frame, x.data(), y.data(), sRef.data(), dRef.data(), ck::kScalarReference);
     for (const auto &w : ck::availableWidths()) {
@@ -469,18 +478,9 @@ TEST(Kernels, SweepFastPathServesAlmostAllDomainPoints) {
   std::mt19937_64 rng(23);
   for (int n = 3; n <= 8; ++n) {
     const RegularDomain domain(n);
-    const SideFrame side = sideZeroFrame(n);
     std::vector<double> x, y;
-    std::uniform_real_distribution<double> u(-1, 1);
-    while (x.size() < 50000) {
-      const Vec2 q{u(rng), u(rng)};
-      bool inside = true;
-      for (int i = 0; i < n && inside; ++i) inside = domain.perpendicularDistance(i, q.x, q.y).v > 0;
-      if (!inside) continue;
-      const Vec2 r = q - side.p0;
-      x.push_back(dot(r, side.e) / dot(side.e, side.e));
-      y.push_back(cross(side.e, r) / dot(side.e, side.e));
-    }
+    randomInteriorPoints(n, 50000, rng, x, y);
+    const SideFrame side = sideZeroFrame(n);
     std::vector<double> s(x.size()), d(x.size());
     const size_t fallbacks = ck::hermiteSweepRoots(x.size(), side.frame, x.data(), y.data(), s.data(), d.data());
     const double share = double(fallbacks) / double(x.size());

@@ -252,6 +252,20 @@ template <int M, class D, class V> HWY_INLINE void reciprocals(D d, V (&x)[M]) {
   x[0] = inverse;
 }
 
+/// Powers 1, s, s², s³ and 1, t, t², t³, and the reciprocals of the eight
+/// denominators s^{3−p} + t^{3−r} of the G² correction patch, (p, r) ≠ (0, 0)
+/// row by row.
+template <class D, class V> HWY_INLINE void g2CornerWeights(D d, V s, V t, V (&sp)[4], V (&tp)[4], V (&den)[8]) {
+  const V one = hn::Set(d, 1.0), s2 = hn::Mul(s, s), t2 = hn::Mul(t, t);
+  sp[0] = one, sp[1] = s, sp[2] = s2, sp[3] = hn::Mul(s2, s);
+  tp[0] = one, tp[1] = t, tp[2] = t2, tp[3] = hn::Mul(t2, t);
+  int j = 0;
+  for (int p = 0; p <= 2; ++p)
+    for (int r = 0; r <= 2; ++r)
+      if (p || r) den[j++] = hn::Add(sp[3 - p], tp[3 - r]);
+  reciprocals(d, den);
+}
+
 template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t k, const GregoryArgs &a) {
   using V = hn::Vec<D>;
   const ck::GregorySamples &in = *a.in;
@@ -283,15 +297,9 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t 
         term[c] = hn::NegMulAdd(fa, hn::Set(d, vec[slot][c]), hn::NegMulAdd(fb, hn::Set(d, vec[slot + 1][c]), term[c]));
     };
     if constexpr (Parabolic) {
-      const V s3 = hn::Mul(s2, s), t3 = hn::Mul(t2, t);
-      const V sp[4] = {one, s, s2, s3}, tp[4] = {one, t, t2, t3};
-      V den[8];
+      V sp[4], tp[4], den[8];
+      g2CornerWeights(d, s, t, sp, tp, den);
       int j = 0;
-      for (int p = 0; p <= 2; ++p)
-        for (int r = 0; r <= 2; ++r)
-          if (p || r) den[j++] = hn::Add(sp[3 - p], tp[3 - r]);
-      reciprocals(d, den);
-      j = 0;
       int slot = 1;
       for (int p = 0; p <= 2; ++p)
         for (int r = 0; r <= 2; ++r) {
@@ -374,15 +382,9 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
     };
     const V zero = hn::Zero(d);
     if constexpr (Parabolic) {
-      const V s2 = hn::Mul(s.v, s.v), t2 = hn::Mul(t.v, t.v);
-      const V sp3[4] = {one, s.v, s2, hn::Mul(s2, s.v)}, tp3[4] = {one, t.v, t2, hn::Mul(t2, t.v)};
-      V den[8];
+      V sp3[4], tp3[4], den[8];
+      g2CornerWeights(d, s.v, t.v, sp3, tp3, den);
       int j = 0;
-      for (int p = 0; p <= 2; ++p)
-        for (int r = 0; r <= 2; ++r)
-          if (p || r) den[j++] = hn::Add(sp3[3 - p], tp3[3 - r]);
-      reciprocals(d, den);
-      j = 0;
       int slot = 1;
       for (int p = 0; p <= 2; ++p)
         for (int r = 0; r <= 2; ++r) {

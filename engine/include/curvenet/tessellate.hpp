@@ -32,9 +32,11 @@ struct TessellationOptions {
   /// Evaluate face interiors through cached evaluation plans (DESIGN.md §4):
   /// the geometry-free part of every sample (sweepline roots, blends) is
   /// computed once per (scheme, sides, resolution, sweepline) and shared by
-  /// all faces and calls; the patch then costs its ribbon evaluations plus
-  /// SIMD weighted sums. The points equal Surface::evaluate's to ~1e-12
-  /// relative. false: evaluate every sample through Surface::evaluate.
+  /// all faces and calls; the patch then costs its ribbon evaluations (from
+  /// per-patch quintic Hermite tables of the ribbons from resolution 32 on,
+  /// built on first use) plus one SIMD kernel pass. The points equal
+  /// Surface::evaluate's to ~1e-12 relative. false: evaluate every sample
+  /// through Surface::evaluate.
   bool usePlans = true;
 };
 
