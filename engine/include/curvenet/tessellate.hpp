@@ -14,6 +14,7 @@
 #pragma once
 
 #include "curvenet/mesh.hpp"
+#include "curvenet/progress.hpp"
 #include "curvenet/surface.hpp"
 
 namespace curvenet {
@@ -34,6 +35,9 @@ struct TessellationOptions {
   /// SIMD weighted sums. The points equal Surface::evaluate's to ~1e-12
   /// relative. false: evaluate every sample through Surface::evaluate.
   bool usePlans = true;
+  /// Optional: the fraction of face-interior samples evaluated so far, on the
+  /// calling thread, at most every 50 ms, ending with 1 (curvenet/progress.hpp).
+  ProgressCallback progress;
 };
 
 /// The process-wide cache of evaluation plans: how many are built and the

@@ -153,6 +153,9 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
   mesh.normals.resize(layout.vertexCount);
   const bool record = options.recordDomainPoints;
   if (record) mesh.domainPoints.resize(layout.vertexCount);
+  std::uint64_t interiorSamples = 0;
+  for (int f = 0; f < faces; ++f) interiorSamples += faceInteriorCount(surface.domainSides(f), r);
+  ProgressCounter progress(options.progress, interiorSamples);
   std::vector<std::vector<std::vector<RowPoint>>> rows(faces);
   tbb::parallel_for(0, faces, [&](int f) { rows[f] = boundaryRows(surface, layout, f); });
 
@@ -209,6 +212,7 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
         mesh.normals[id] = normalized(normal);
         if (record) mesh.domainPoints[id] = {tile.face, uv};
       }
+      progress.advance(tile.count);
     };
     if (total < kSerialSamples) {
       for (const Tile &tile : tiles) run(tile);
@@ -263,6 +267,7 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
         std::swap(lower, upper);
       }
     }
+    if (!planned) progress.advance(faceInteriorCount(n, r));
   });
 
   mesh.faceTriangleStart.push_back(0);
@@ -270,6 +275,7 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
     mesh.triangles.insert(mesh.triangles.end(), triangles[f].begin(), triangles[f].end());
     mesh.faceTriangleStart.push_back(static_cast<std::uint32_t>(mesh.triangles.size()));
   }
+  progress.finish();
   return mesh;
 }
 
