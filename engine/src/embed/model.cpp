@@ -15,6 +15,7 @@
 
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
+#include "parallel/fork_join.hpp"
 
 namespace curvenet {
 inline namespace v1 {
@@ -244,10 +245,15 @@ struct Model::Impl {
       // Each point is written by one task only, so the output is the same for
       // any thread count; the grain keeps task overhead below 1%.
       tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+      // execute() may hand the functor to a worker: its own fork and join for TSan.
+      const parallel::ForkJoin edges;
       arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024),
-                          [&](const tbb::blocked_range<std::size_t> &r) { range(r.begin(), r.end()); });
+        edges.taskBegins();
+        parallel::parallelFor(tbb::blocked_range<std::size_t>(0, n, 1024),
+                              [&](const tbb::blocked_range<std::size_t> &r) { range(r.begin(), r.end()); });
+        edges.taskEnds();
       });
+      edges.joined();
     }
     std::size_t outside = 0, first = n;
     for (std::size_t k = 0; k < n; ++k)

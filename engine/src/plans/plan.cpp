@@ -14,6 +14,7 @@
 #include "curvenet/kernels/kernels.hpp"
 #include "curvenet/tessellate.hpp"
 #include "patches/domain.hpp"
+#include "parallel/fork_join.hpp"
 
 namespace curvenet {
 inline namespace v1 {
@@ -102,7 +103,7 @@ EvaluationPlan::EvaluationPlan(const PlanKey &key) : key_(key) {
   const bool cr = key.scheme == Scheme::CompositeRibbon;
   const bool cubicHermite = !cr && key.sweepline == Sweepline::Hermite && !perSide_;
   const kernels::SweepFrame frame = sideZeroFrame(domain);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kGrain), [&](const tbb::blocked_range<std::size_t> &range) {
+  parallel::parallelFor(tbb::blocked_range<std::size_t>(0, count, kGrain), [&](const tbb::blocked_range<std::size_t> &range) {
     // Side 0's cubic Hermite roots for the whole block in one batched solve.
     std::vector<double> x, y, roots, dist;
     if (cubicHermite) {

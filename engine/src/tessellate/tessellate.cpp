@@ -18,6 +18,7 @@
 #include "curvenet/error.hpp"
 #include "patches/patch.hpp"
 #include "plans/plan.hpp"
+#include "parallel/fork_join.hpp"
 
 namespace curvenet {
 inline namespace v1 {
@@ -157,7 +158,7 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
   for (int f = 0; f < faces; ++f) interiorSamples += faceInteriorCount(surface.domainSides(f), r);
   ProgressCounter progress(options.progress, interiorSamples);
   std::vector<std::vector<std::vector<RowPoint>>> rows(faces);
-  tbb::parallel_for(0, faces, [&](int f) { rows[f] = boundaryRows(surface, layout, f); });
+  parallel::parallelFor(0, faces, [&](int f) { rows[f] = boundaryRows(surface, layout, f); });
 
   // Boundary positions come from the curves themselves; their normals from
   // the lowest-numbered face that shows them (deterministic).
@@ -218,7 +219,7 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
       for (const Tile &tile : tiles) run(tile);
     } else {
       // One tile per task (grain 1): a tile is already ~10⁵ flops.
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles.size(), 1),
+      parallel::parallelFor(tbb::blocked_range<std::size_t>(0, tiles.size(), 1),
                         [&](const tbb::blocked_range<std::size_t> &range) {
                           for (std::size_t t = range.begin(); t < range.end(); ++t) run(tiles[t]);
                         });
@@ -226,7 +227,7 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
   }
 
   std::vector<std::vector<std::array<std::uint32_t, 3>>> triangles(faces);
-  tbb::parallel_for(0, faces, [&](int f) {
+  parallel::parallelFor(0, faces, [&](int f) {
     const int n = surface.domainSides(f);
     const std::uint32_t base = layout.faceBase[f];
     const std::uint32_t centre = base;
