@@ -5,10 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cerrno>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <pty.h>
 #include <string>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -38,6 +40,34 @@ inline CliRun runCli(const std::string &arguments) {
   std::ifstream err(errFile);
   run.err.assign(std::istreambuf_iterator<char>(err), {});
   std::filesystem::remove(errFile);
+  return run;
+}
+
+/// Runs CURVENET_CLI with `arguments` on a fresh pseudo-terminal (stdin,
+/// stdout and stderr all on it, as in an interactive shell) and waits for it.
+/// Everything the program wrote is in `out`, as the terminal received it.
+inline CliRun runCliOnTerminal(const std::string &arguments) {
+  const std::string command = std::string("'") + CURVENET_CLI + "' " + arguments;
+  CliRun run;
+  int terminal = -1;
+  const pid_t pid = ::forkpty(&terminal, nullptr, nullptr, nullptr);
+  if (pid < 0) return run;
+  if (pid == 0) {
+    ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char *>(nullptr));
+    ::_exit(127);
+  }
+  // Read until the program's side closes (EIO once no process holds the terminal).
+  std::array<char, 4096> buffer{};
+  for (;;) {
+    const ssize_t n = ::read(terminal, buffer.data(), buffer.size());
+    if (n > 0) run.out.append(buffer.data(), static_cast<std::size_t>(n));
+    else if (n < 0 && errno == EINTR) continue;
+    else break;
+  }
+  ::close(terminal);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return run;
 }
 

@@ -22,6 +22,7 @@ extern char **environ;
 namespace fs = std::filesystem;
 using curvenet::test::CliRun;
 using curvenet::test::runCli;
+using curvenet::test::runCliOnTerminal;
 
 namespace {
 
@@ -169,4 +170,49 @@ TEST_F(Cli, EveryWritingCommandIsDeterministic) {
     tweaks.push_back(fileBytes(out));
   }
   EXPECT_TRUE(tweaks[0] == tweaks[1]);
+}
+
+// Progress display: a self-overwriting stderr line on a terminal only.
+TEST_F(Cli, NoProgressWhenStderrIsNotATerminal) {
+  const fs::path mesh = dir / "m.obj", image = dir / "i.png";
+  const CliRun tess = runCli("tessellate builtin:pentagon --resolution 24 -o '" + mesh.string() + "'");
+  ASSERT_EQ(tess.exitCode, 0) << tess.err;
+  EXPECT_EQ(tess.err.find('%'), std::string::npos) << tess.err;
+  EXPECT_EQ(tess.err.find('\r'), std::string::npos) << tess.err;
+  const CliRun pic = runCli("render builtin:pentagon --size 64x48 --resolution 8 -o '" + image.string() + "'");
+  ASSERT_EQ(pic.exitCode, 0) << pic.err;
+  EXPECT_EQ(pic.err.find('%'), std::string::npos) << pic.err;
+}
+
+TEST_F(Cli, ProgressOnATerminal) {
+  const fs::path mesh = dir / "m.obj", image = dir / "i.png";
+  const CliRun tess = runCliOnTerminal("tessellate builtin:pentagon --resolution 24 -o '" + mesh.string() + "'");
+  ASSERT_EQ(tess.exitCode, 0) << tess.out;
+  // The first and the last report always show; the line is erased afterwards.
+  EXPECT_NE(tess.out.find("\rtessellate   0%"), std::string::npos) << tess.out;
+  EXPECT_NE(tess.out.find("\rtessellate 100%"), std::string::npos) << tess.out;
+  EXPECT_NE(tess.out.find("\r\033[K"), std::string::npos) << tess.out;
+  EXPECT_NE(tess.out.find("vertices"), std::string::npos) << tess.out; // the result line is still there
+  const CliRun pic = runCliOnTerminal("render builtin:pentagon --size 64x48 --resolution 8 -o '" + image.string() + "'");
+  ASSERT_EQ(pic.exitCode, 0) << pic.out;
+  EXPECT_NE(pic.out.find("\rtessellate 100%"), std::string::npos) << pic.out;
+  EXPECT_NE(pic.out.find("\rrender 100%"), std::string::npos) << pic.out;
+}
+
+TEST_F(Cli, QuietSilencesProgressOnATerminal) {
+  const fs::path mesh = dir / "m.obj", image = dir / "i.png";
+  const CliRun tess =
+      runCliOnTerminal("tessellate builtin:pentagon --resolution 24 --quiet -o '" + mesh.string() + "'");
+  ASSERT_EQ(tess.exitCode, 0) << tess.out;
+  EXPECT_EQ(tess.out.find('%'), std::string::npos) << tess.out;
+  EXPECT_NE(tess.out.find("vertices"), std::string::npos) << tess.out;
+  const CliRun pic = runCliOnTerminal("render builtin:pentagon --size 64x48 --resolution 8 -q -o '" + image.string() + "'");
+  ASSERT_EQ(pic.exitCode, 0) << pic.out;
+  EXPECT_EQ(pic.out.find('%'), std::string::npos) << pic.out;
+  // Every command accepts the flag, so scripts can pass it everywhere.
+  for (const char *command : {"list -q", "check builtin:pentagon --quiet --samples 4 --resolution 4",
+                              "bench builtin:pentagon --quiet --resolution 4 --points 10 --json"}) {
+    const CliRun run = runCli(command);
+    EXPECT_EQ(run.exitCode, 0) << command << "\n" << run.err;
+  }
 }

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstring>
 #include <set>
+#include <stdexcept>
 #include <thread>
 
 #include "curvenet/builtins.hpp"
@@ -109,4 +110,36 @@ TEST(PlannedTessellation, BytesDoNotDependOnThreads) {
     EXPECT_EQ(0, std::memcmp(one.positions.data(), all.positions.data(), one.positions.size() * sizeof(Vec3)));
     EXPECT_EQ(one.triangles, two.triangles);
   }
+}
+
+// Progress reports come on the calling thread only (the callback needs no
+// locking), never decrease, start at 0 and end at exactly 1, and do not
+// change the mesh — on the planned and the pointwise path, with 2 threads.
+TEST(PlannedTessellation, ProgressReportsOnTheCallingThreadAndKeepTheBytes) {
+  const Network network = Network::build(builtinNetwork("pentagon"));
+  const Surface surface = Surface::build(network, {Scheme::GregoryG2});
+  for (bool usePlans : {true, false}) {
+    std::vector<double> fractions;
+    bool otherThread = false;
+    const auto caller = std::this_thread::get_id();
+    TessellationOptions options{64, 2, false, usePlans};
+    options.progress = [&](double fraction) {
+      otherThread |= std::this_thread::get_id() != caller;
+      fractions.push_back(fraction);
+    };
+    const Mesh reported = tessellate(surface, options);
+    const Mesh plain = tessellate(surface, {64, 2, false, usePlans});
+    EXPECT_FALSE(otherThread);
+    ASSERT_GE(fractions.size(), 2u);
+    EXPECT_EQ(fractions.front(), 0.0);
+    EXPECT_EQ(fractions.back(), 1.0);
+    for (std::size_t k = 1; k < fractions.size(); ++k) EXPECT_LE(fractions[k - 1], fractions[k]);
+    ASSERT_EQ(reported.positions.size(), plain.positions.size());
+    EXPECT_EQ(0, std::memcmp(reported.positions.data(), plain.positions.data(), plain.positions.size() * sizeof(Vec3)));
+    EXPECT_EQ(reported.triangles, plain.triangles);
+  }
+  // A callback that throws (a cancelled call) aborts the tessellation.
+  TessellationOptions cancelled{64, 2};
+  cancelled.progress = [](double) { throw std::runtime_error("cancelled"); };
+  EXPECT_THROW(tessellate(surface, cancelled), std::runtime_error);
 }

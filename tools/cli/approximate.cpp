@@ -13,6 +13,7 @@
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
 #include "curvenet/tessellate.hpp"
+#include "progress.hpp"
 
 namespace curvenet::cli {
 
@@ -32,6 +33,7 @@ Command addApproximateCommand(CLI::App &app) {
     std::string mesh, network, output, g1Output, report, writeInputs;
     int resolution = 24, polyline = 32, threads = 0;
     double fitRadius = 0, edge = 0.015;
+    bool quiet = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App *sub = app.add_subcommand("approximate", "G1/G2 surfaces fitted to a triangle mesh (paper 000 Fig. 10)");
@@ -61,6 +63,7 @@ Command addApproximateCommand(CLI::App &app) {
   sub->add_option("--write-inputs", o->writeInputs,
                   "write the mesh (.obj) and network (.json) actually used into this folder");
   sub->add_option("--threads", o->threads, "worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  addQuietFlag(sub, o->quiet);
   return {sub, [o] {
             Mesh mesh;
             if (o->mesh.starts_with(kBuiltin)) {
@@ -87,8 +90,14 @@ Command addApproximateCommand(CLI::App &app) {
             options.fitRadius = o->fitRadius;
             options.threads = o->threads;
             const ApproximationResult result = approximateMesh(mesh, curves, options);
-            writeMeshFile(tessellate(result.g2, {o->resolution, o->threads}), o->output);
-            if (!o->g1Output.empty()) writeMeshFile(tessellate(result.g1, {o->resolution, o->threads}), o->g1Output);
+            auto tessellateWithProgress = [&](const Surface &surface, const char *label) {
+              ProgressLine progress(label, progressWanted(o->quiet));
+              TessellationOptions t{o->resolution, o->threads};
+              t.progress = progress.callback();
+              return tessellate(surface, t);
+            };
+            writeMeshFile(tessellateWithProgress(result.g2, "tessellate G2"), o->output);
+            if (!o->g1Output.empty()) writeMeshFile(tessellateWithProgress(result.g1, "tessellate G1"), o->g1Output);
 
             std::printf("mesh: %zu vertices, %zu triangles; network: %zu faces, %zu segments; curves within %.2e of "
                         "the mesh\n",

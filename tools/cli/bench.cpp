@@ -18,6 +18,7 @@
 #include <random>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "curvenet/builtins.hpp"
 #include "curvenet/io.hpp"
 #include "curvenet/kernels/kernels.hpp"
@@ -103,7 +104,7 @@ Command addBenchCommand(CLI::App &app) {
   struct Options {
     std::string input = "builtin:pentagon";
     int resolution = 256, points = 4000, threads = 0;
-    bool json = false;
+    bool json = false, quiet = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App *sub = app.add_subcommand("bench", "G1 vs G2 evaluation cost (paper 000 Table 1 form)");
@@ -113,6 +114,7 @@ Command addBenchCommand(CLI::App &app) {
   sub->add_option("--threads", o->threads, "threads for the parallel figures (0 = all cores)")
       ->check(CLI::NonNegativeNumber);
   sub->add_flag("--json", o->json, "print one JSON object");
+  addQuietFlag(sub, o->quiet); // accepted everywhere; bench shows no progress line
   return {sub, [o] {
             const Network network = Network::build(loadNetworkInput(o->input), o->input);
             const int threads = o->threads > 0 ? o->threads : tbb::info::default_concurrency();

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "curvenet/analysis.hpp"
 #include "curvenet/io.hpp"
 #include "curvenet/network.hpp"
@@ -34,7 +35,7 @@ Command addCheckCommand(CLI::App &app) {
     std::string scheme = "gregory-g1";
     int samples = 64, resolution = 32, threads = 0;
     bool json = false;
-    bool tweak = false;
+    bool tweak = false, quiet = false;
     std::string output;
   };
   auto options = std::make_shared<Options>();
@@ -56,6 +57,7 @@ Command addCheckCommand(CLI::App &app) {
   CLI::Option *output = sub->add_option("-o,--output", options->output, "where --tweak writes the repaired network (.json)");
   tweak->needs(output);
   output->needs(tweak);
+  addQuietFlag(sub, options->quiet); // accepted everywhere; check shows no progress line
   return {sub, [options] {
             // Every parallel stage of the report (continuity, curvature,
             // tessellation, reference deviation) runs under this limit; the

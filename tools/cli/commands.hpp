@@ -37,8 +37,10 @@ struct RenderedPicture {
   double seconds = 0;
 };
 /// Tessellates at `resolution`, computes the patch curvature for mean/gauss
-/// modes, and renders (shared by `render` and `demo`).
-RenderedPicture renderPicture(const Surface &surface, const render::RenderOptions &options, int resolution);
+/// modes, and renders (shared by `render` and `demo`). `showProgress`: a
+/// progress line on stderr for each of the two steps (see progress.hpp).
+RenderedPicture renderPicture(const Surface &surface, const render::RenderOptions &options, int resolution,
+                              bool showProgress = false);
 /// "wrote PATH (size, mode, range, triangles, time, rays/s)".
 void printPictureLine(const std::string &path, const RenderedPicture &picture);
 /// One stderr warning per face whose patch folds (Surface::foldedFaces).

@@ -1,8 +1,10 @@
 // curvenet list — the built-in networks with their face counts by side number.
 #include <cstdio>
 #include <map>
+#include <memory>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "curvenet/builtins.hpp"
 #include "curvenet/network.hpp"
 
@@ -10,7 +12,9 @@ namespace curvenet::cli {
 
 Command addListCommand(CLI::App &app) {
   CLI::App *sub = app.add_subcommand("list", "The built-in networks (use as builtin:NAME)");
-  return {sub, [] {
+  auto quiet = std::make_shared<bool>(false);
+  addQuietFlag(sub, *quiet); // accepted everywhere; list shows no progress line
+  return {sub, [quiet] {
             std::printf("%-34s %-7s %s\n", "name", "faces", "sides: faces");
             for (const BuiltinInfo &info : builtinNetworks()) {
               const Network network = Network::build(builtinNetwork(info.name));

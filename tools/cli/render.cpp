@@ -11,11 +11,13 @@
 #include "curvenet/io.hpp"
 #include "curvenet/surface.hpp"
 #include "curvenet/tessellate.hpp"
+#include "progress.hpp"
 #include "render.hpp"
 
 namespace curvenet::cli {
 
-RenderedPicture renderPicture(const Surface &surface, const render::RenderOptions &options, int resolution) {
+RenderedPicture renderPicture(const Surface &surface, const render::RenderOptions &options, int resolution,
+                              bool showProgress) {
   const bool curvatureMode = options.mode == render::Mode::Mean || options.mode == render::Mode::Gauss;
   TessellationOptions t;
   t.resolution = resolution;
@@ -28,7 +30,11 @@ RenderedPicture renderPicture(const Surface &surface, const render::RenderOption
                    "--resolution " + std::to_string(resolution) + " at " + std::to_string(options.width) + "x" +
                        std::to_string(options.height));
   RenderedPicture out;
-  out.mesh = tessellate(surface, t);
+  {
+    ProgressLine progress("tessellate", showProgress);
+    t.progress = progress.callback();
+    out.mesh = tessellate(surface, t);
+  }
   std::vector<double> values;
   if (curvatureMode) {
     CurvatureOptions c;
@@ -37,7 +43,11 @@ RenderedPicture renderPicture(const Surface &surface, const render::RenderOption
       values.push_back(options.mode == render::Mode::Mean ? s.mean : s.gauss);
   }
   const auto start = std::chrono::steady_clock::now();
-  out.image = render::renderMesh(out.mesh, options, values);
+  ProgressLine progress("render", showProgress);
+  render::RenderOptions withProgress = options;
+  withProgress.progress = progress.callback();
+  out.image = render::renderMesh(out.mesh, withProgress, values);
+  progress.clear();
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
@@ -55,7 +65,7 @@ Command addRenderCommand(CLI::App &app) {
   struct Options {
     std::string input, output, scheme = "gregory-g1", mode = "reflection", size = "800x600", view = "30,30";
     double stripes = 8;
-    bool boundaries = false;
+    bool boundaries = false, quiet = false;
     int resolution = 32, threads = 0;
   };
   auto o = std::make_shared<Options>();
@@ -72,6 +82,7 @@ Command addRenderCommand(CLI::App &app) {
   sub->add_option("--resolution", o->resolution, "tessellation intervals per segment (default 32)")
       ->check(CLI::Range(1, 4096));
   sub->add_option("--threads", o->threads, "worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  addQuietFlag(sub, o->quiet);
   return {sub, [o] {
             // Every option is checked before any work, so a mistake costs nothing and writes nothing.
             const std::string ext = std::filesystem::path(o->output).extension().string();
@@ -102,7 +113,7 @@ Command addRenderCommand(CLI::App &app) {
             const Network network = Network::build(loadNetworkInput(o->input), o->input);
             const Surface surface = Surface::build(network, {scheme});
             warnAboutFolds(surface);
-            const RenderedPicture picture = renderPicture(surface, r, o->resolution);
+            const RenderedPicture picture = renderPicture(surface, r, o->resolution, progressWanted(o->quiet));
             render::writeImage(picture.image, o->output);
             printPictureLine(o->output, picture);
             return 0;

@@ -10,6 +10,7 @@
 #include "curvenet/io.hpp"
 #include "curvenet/surface.hpp"
 #include "curvenet/tessellate.hpp"
+#include "progress.hpp"
 #include "report.hpp"
 
 namespace curvenet::cli {
@@ -18,6 +19,7 @@ Command addTessellateCommand(CLI::App &app) {
   struct Options {
     std::string input, output, scheme = "gregory-g1", controlNets;
     int resolution = 16, threads = 0;
+    bool quiet = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App *sub = app.add_subcommand("tessellate", "Tessellate every face into one watertight mesh");
@@ -27,6 +29,7 @@ Command addTessellateCommand(CLI::App &app) {
   sub->add_option("--control-nets", o->controlNets, "also write the quintic control nets as JSON (bezier-g1, coons-c0)");
   sub->add_option("--resolution", o->resolution, "intervals per segment")->check(CLI::Range(1, 4096));
   sub->add_option("--threads", o->threads, "worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  addQuietFlag(sub, o->quiet);
   return {sub, [o] {
             const Scheme scheme = parseScheme(o->scheme);
             if (!o->controlNets.empty() && scheme != Scheme::BezierG1 && scheme != Scheme::CoonsC0)
@@ -36,7 +39,11 @@ Command addTessellateCommand(CLI::App &app) {
             warnAboutFolds(surface);
             refuseIfTooLarge(estimateMeshBytes(estimateMeshVertices(surface, o->resolution), true),
                              "--resolution " + std::to_string(o->resolution));
-            const Mesh mesh = tessellate(surface, {o->resolution, o->threads});
+            ProgressLine progress("tessellate", progressWanted(o->quiet));
+            TessellationOptions t{o->resolution, o->threads};
+            t.progress = progress.callback();
+            const Mesh mesh = tessellate(surface, t);
+            progress.clear();
             writeMeshFile(mesh, o->output);
             if (!o->controlNets.empty()) writeControlNets(surface, o->controlNets);
             std::printf("%s: %zu vertices, %zu triangles (%s, resolution %d)\n", o->output.c_str(),
@@ -46,10 +53,17 @@ Command addTessellateCommand(CLI::App &app) {
 }
 
 Command addDemoCommand(CLI::App &app) {
-  auto out = std::make_shared<std::string>("demo-output");
+  struct Options {
+    std::string out = "demo-output";
+    bool quiet = false;
+  };
+  auto o = std::make_shared<Options>();
   CLI::App *sub = app.add_subcommand("demo", "The main job on the built-in default network");
-  sub->add_option("--out", *out, "output folder");
-  return {sub, [out] {
+  sub->add_option("--out", o->out, "output folder");
+  addQuietFlag(sub, o->quiet);
+  return {sub, [o] {
+            const std::string *out = &o->out;
+            const bool showProgress = progressWanted(o->quiet);
             const std::string input = "builtin:" + defaultBuiltinName();
             const Network network = Network::build(builtinNetwork(defaultBuiltinName()), input);
             std::filesystem::create_directories(*out);
@@ -58,7 +72,6 @@ Command addDemoCommand(CLI::App &app) {
               if (!acceptsAnyLoop(scheme)) continue; // the default network has 5- and 6-sided loops
               const Surface surface = Surface::build(network, {scheme});
               warnAboutFolds(surface);
-            warnAboutFolds(surface);
               nlohmann::json figures;
               addSurfaceReport(figures, surface, 64, 32);
               report["schemes"][schemeName(scheme)] = figures;
@@ -68,7 +81,11 @@ Command addDemoCommand(CLI::App &app) {
                           figures["continuity"]["max_position_gap"].get<double>(),
                           figures.contains("reference") ? figures["reference"]["max_deviation"].get<double>() : 0.0,
                           figures.contains("reference") ? figures["reference"]["mean_deviation"].get<double>() : 0.0);
-              const Mesh mesh = tessellate(surface, {32, 0});
+              ProgressLine progress("tessellate " + schemeName(scheme), showProgress);
+              TessellationOptions t{32, 0};
+              t.progress = progress.callback();
+              const Mesh mesh = tessellate(surface, t);
+              progress.clear();
               const std::string path = *out + "/" + defaultBuiltinName() + "-" + schemeName(scheme) + ".obj";
               writeMeshFile(mesh, path);
               report["meshes"][schemeName(scheme)] = {{"file", path},
@@ -93,7 +110,7 @@ Command addDemoCommand(CLI::App &app) {
                 options.height = 480;
                 options.mode = mode;
                 options.boundaries = true;
-                const RenderedPicture picture = renderPicture(surface, options, 32);
+                const RenderedPicture picture = renderPicture(surface, options, 32, showProgress);
                 const std::string path = *out + "/" + render::modeName(mode) + "-" + name + ".png";
                 render::writeImage(picture.image, path);
                 report["pictures"].push_back({{"file", path}, {"scheme", name}, {"mode", render::modeName(mode)},
@@ -113,7 +130,7 @@ Command addDemoCommand(CLI::App &app) {
                 options.height = 360;
                 options.mode = render::Mode::Reflection;
                 options.boundaries = true;
-                const RenderedPicture picture = renderPicture(surface, options, 32);
+                const RenderedPicture picture = renderPicture(surface, options, 32, showProgress);
                 const std::string path = *out + "/reflection-" + tName + "-" + schemeName(scheme) + ".png";
                 render::writeImage(picture.image, path);
                 report["pictures"].push_back({{"file", path}, {"scheme", schemeName(scheme)}, {"network", tName},

@@ -297,6 +297,7 @@ Image renderMesh(const Mesh &mesh, const RenderOptions &o, std::span<const doubl
   };
 
   RTCScene rtcScene = scene->scene;
+  ProgressCounter progress(o.progress, static_cast<std::uint64_t>(o.width) * static_cast<std::uint64_t>(o.height));
   tbb::parallel_for(tbb::blocked_range2d<int>(0, o.height, 16, 0, o.width, 16), [&](const auto &tile) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -337,8 +338,10 @@ Image renderMesh(const Mesh &mesh, const RenderOptions &o, std::span<const doubl
         img.color[3 * pixel + 2] = static_cast<float>(sum.z);
         img.coverage[pixel] = static_cast<float>(hits / 5.0);
       }
+    progress.advance(static_cast<std::uint64_t>(tile.rows().size()) * static_cast<std::uint64_t>(tile.cols().size()));
   });
   checkDevice(scene->device, "ray casting");
+  progress.finish();
   return img;
 }
 

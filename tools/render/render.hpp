@@ -43,6 +43,7 @@
 #include <vector>
 
 #include "curvenet/mesh.hpp"
+#include "curvenet/progress.hpp"
 
 namespace curvenet::render {
 
@@ -62,6 +63,9 @@ struct RenderOptions {
   /// mean/gauss colour range R (> 0); 0 = automatic: the 98th percentile of
   /// |value| over the mesh vertices, so a few extreme corners do not wash the map out.
   double valueRange = 0;
+  /// Optional: the fraction of pixels shaded so far, on the calling thread,
+  /// at most every 50 ms, ending with 1 (curvenet/progress.hpp).
+  ProgressCallback progress;
 };
 
 /// A rendered picture, rows top to bottom, all arrays width · height long

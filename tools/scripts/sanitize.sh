@@ -9,14 +9,18 @@ set -euo pipefail
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 which=${1:-all}
 jobs=$(nproc)
+# -O1 with line tables only: what the sanitizers recommend, and builds about a
+# third faster than -O2 -g, which keeps both parts inside CI's time.
+flags=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG"
+       "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DCURVENET_BUILD_BENCH=OFF)
 
 # Packages are the same as for the normal build.
 CURVENET_BUILD_DIR=$repo/build bash "$repo/tools/scripts/setup.sh" --install-only
 
 if [[ $which == all || $which == address ]]; then
   dir=$repo/build-asan
-  [ -f "$dir/CMakeCache.txt" ] || cmake -S "$repo" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DCURVENET_SANITIZE=address,undefined -DCURVENET_BUILD_BENCH=OFF
+  [ -f "$dir/CMakeCache.txt" ] || cmake -S "$repo" -B "$dir" -G Ninja "${flags[@]}" \
+    -DCURVENET_SANITIZE=address,undefined
   cmake --build "$dir" -j "$jobs"
   # Embree and TBB allocate thread-local pools they never free: leaks are not
   # this project's findings; every other ASan/UBSan report fails the test.
@@ -26,8 +30,8 @@ fi
 
 if [[ $which == all || $which == thread ]]; then
   dir=$repo/build-tsan
-  [ -f "$dir/CMakeCache.txt" ] || cmake -S "$repo" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DCURVENET_SANITIZE=thread -DCURVENET_BUILD_BENCH=OFF -DCURVENET_BUILD_TOOLS=OFF
+  [ -f "$dir/CMakeCache.txt" ] || cmake -S "$repo" -B "$dir" -G Ninja "${flags[@]}" \
+    -DCURVENET_SANITIZE=thread -DCURVENET_BUILD_TOOLS=OFF
   cmake --build "$dir" -j "$jobs" --target surface_test plans_test embed_test
   # TBB's own synchronization is not visible to TSan in the Debian build;
   # tests/tsan.supp lists those library frames, nothing of ours.

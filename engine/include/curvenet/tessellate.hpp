@@ -16,6 +16,7 @@
 #include <span>
 
 #include "curvenet/mesh.hpp"
+#include "curvenet/progress.hpp"
 #include "curvenet/surface.hpp"
 
 namespace curvenet {
@@ -38,6 +39,9 @@ struct TessellationOptions {
   /// Surface::evaluate's to ~1e-12 relative. false: evaluate every sample
   /// through Surface::evaluate.
   bool usePlans = true;
+  /// Optional: the fraction of face-interior samples evaluated so far, on the
+  /// calling thread, at most every 50 ms, ending with 1 (curvenet/progress.hpp).
+  ProgressCallback progress;
 };
 
 /// The process-wide cache of evaluation plans: how many are built and the

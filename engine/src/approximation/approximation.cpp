@@ -14,6 +14,7 @@
 #include "curvenet/error.hpp"
 #include "curvenet/mesh_reference.hpp"
 #include "curvenet/tessellate.hpp"
+#include "parallel/fork_join.hpp"
 
 namespace curvenet {
 inline namespace v1 {
@@ -89,7 +90,7 @@ DeviationFigures measurePointDeviation(const Surface &surface, const std::vector
   };
   std::vector<double> distance(points.size());
   std::vector<char> excluded(points.size(), 0);
-  tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t i) {
+  parallel::parallelFor(std::size_t(0), points.size(), [&](std::size_t i) {
     const Vec3 &p = points[i];
     const TriangleBvh::Hit hit = bvh.closest(p);
     if (onBoundary(hit)) {

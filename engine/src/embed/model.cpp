@@ -15,6 +15,7 @@
 
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
+#include "parallel/fork_join.hpp"
 
 namespace curvenet {
 inline namespace v1 {
@@ -294,11 +295,16 @@ struct Model::Impl {
       // Each point is written by one task only, so the output is the same for
       // any thread count; the grain keeps task overhead below 1%.
       tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+      // execute() may hand the functor to a worker: its own fork and join for TSan.
+      const parallel::ForkJoin edges;
       arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t> &r) {
+        edges.taskBegins();
+        parallel::parallelFor(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t> &r) {
           range(surface, polygon, r.begin(), r.end());
         });
+        edges.taskEnds();
       });
+      edges.joined();
     }
     // Points outside the domain: NaN (whatever the range evaluation left
     // there) and the status.

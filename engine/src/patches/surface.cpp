@@ -9,6 +9,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "parallel/fork_join.hpp"
+
 #include "analysis/vertex_curvature.hpp"
 #include "analysis/vertex_frames.hpp"
 #include "bezier/bezier_surface.hpp"
@@ -226,7 +228,7 @@ void forEachItem(std::size_t count, Body &&body) {
   if (count < 2) {
     for (std::size_t k = 0; k < count; ++k) one(k);
   } else {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 1), [&](const tbb::blocked_range<std::size_t> &r) {
+    parallel::parallelFor(tbb::blocked_range<std::size_t>(0, count, 1), [&](const tbb::blocked_range<std::size_t> &r) {
       for (std::size_t k = r.begin(); k < r.end(); ++k) one(k);
     });
   }

@@ -14,6 +14,7 @@
 #include "curvenet/kernels/kernels.hpp"
 #include "curvenet/tessellate.hpp"
 #include "patches/domain.hpp"
+#include "parallel/fork_join.hpp"
 
 namespace curvenet {
 inline namespace v1 {
@@ -86,7 +87,7 @@ EvaluationPlan::EvaluationPlan(const PlanKey &key) : key_(key) {
   const bool cr = key.scheme == Scheme::CompositeRibbon;
   const bool cubicHermite = !cr && key.sweepline == Sweepline::Hermite && !perSide_;
   const kernels::SweepFrame frame = domain.sweepFrame(0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kGrain), [&](const tbb::blocked_range<std::size_t> &range) {
+  parallel::parallelFor(tbb::blocked_range<std::size_t>(0, count, kGrain), [&](const tbb::blocked_range<std::size_t> &range) {
     // Side 0's cubic Hermite roots for the whole block in one batched solve.
     std::vector<double> x, y, roots, dist;
     if (cubicHermite) {
@@ -144,7 +145,7 @@ EvaluationPlan::EvaluationPlan(const PlanKey &key) : key_(key) {
   // position-only path (no rotation lookups or copies per evaluation).
   if (!cr) {
     sideValues_.resize(static_cast<std::size_t>(n) * count), blendValues_.resize(static_cast<std::size_t>(n) * count);
-    tbb::parallel_for(0, n, [&](int i) {
+    parallel::parallelFor(0, n, [&](int i) {
       for (std::size_t k = 0; k < count; ++k) {
         sideValues_[static_cast<std::size_t>(i) * count + k] = side(i, k).v;
         blendValues_[static_cast<std::size_t>(i) * count + k] = blend(i, k).v;

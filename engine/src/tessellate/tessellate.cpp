@@ -18,6 +18,7 @@
 #include "curvenet/error.hpp"
 #include "patches/patch.hpp"
 #include "plans/plan.hpp"
+#include "parallel/fork_join.hpp"
 
 namespace curvenet {
 inline namespace v1 {
@@ -160,10 +161,10 @@ template <class Run> void forEachTile(const std::vector<Tile> &tiles, std::size_
     return;
   }
   // One tile per task (grain 1): a tile is already ~10⁵ flops.
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tiles.size(), 1),
-                    [&](const tbb::blocked_range<std::size_t> &range) {
-                      for (std::size_t t = range.begin(); t < range.end(); ++t) run(tiles[t]);
-                    });
+  parallel::parallelFor(tbb::blocked_range<std::size_t>(0, tiles.size(), 1),
+                        [&](const tbb::blocked_range<std::size_t> &range) {
+                          for (std::size_t t = range.begin(); t < range.end(); ++t) run(tiles[t]);
+                        });
 }
 
 } // namespace
@@ -234,8 +235,12 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
     mesh.normals.resize(layout.vertexCount);
     if (record) mesh.domainPoints.resize(layout.vertexCount);
   }
+  std::uint64_t interiorSamples = 0;
+  for (int f = 0; f < faces; ++f)
+    if (wanted(f)) interiorSamples += faceInteriorCount(surface.domainSides(f), r);
+  ProgressCounter progress(options.progress, interiorSamples);
   std::vector<std::vector<std::vector<RowPoint>>> rows(faces);
-  tbb::parallel_for(0, faces, [&](int f) { rows[f] = boundaryRows(surface, layout, f); });
+  parallel::parallelFor(0, faces, [&](int f) { rows[f] = boundaryRows(surface, layout, f); });
 
   // Boundary positions come from the curves themselves; their normals from
   // the lowest-numbered face that shows them (deterministic).
@@ -284,11 +289,12 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
         mesh.normals[id] = normalized(normal);
         if (record) mesh.domainPoints[id] = {tile.face, uv};
       }
+      progress.advance(tile.count);
     });
   }
 
   std::vector<std::vector<std::array<std::uint32_t, 3>>> triangles(faces);
-  tbb::parallel_for(0, faces, [&](int f) {
+  parallel::parallelFor(0, faces, [&](int f) {
     if (!wanted(f)) return;
     const int n = surface.domainSides(f);
     const std::uint32_t base = layout.faceBase[f];
@@ -330,6 +336,7 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
         std::swap(lower, upper);
       }
     }
+    if (!planned) progress.advance(faceInteriorCount(n, r));
   });
 
   if (only) {
@@ -349,6 +356,7 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
     mesh.triangles.insert(mesh.triangles.end(), triangles[f].begin(), triangles[f].end());
     mesh.faceTriangleStart.push_back(static_cast<std::uint32_t>(mesh.triangles.size()));
   }
+  progress.finish();
 }
 } // namespace
 

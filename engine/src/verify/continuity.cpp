@@ -9,6 +9,7 @@
 
 #include "curvenet/error.hpp"
 #include "curvenet/tessellate.hpp"
+#include "parallel/fork_join.hpp"
 
 namespace curvenet {
 inline namespace v1 {
@@ -61,7 +62,7 @@ ContinuityReport measureContinuity(const Surface &surface, const ContinuityOptio
   std::vector<SegmentFigures> figures(segments);
   std::vector<char> shared(segments, 0);
 
-  tbb::parallel_for(0, segments, [&](int e) {
+  parallel::parallelFor(0, segments, [&](int e) {
     const std::vector<SegmentOnFace> places = placesOf(net, e);
     SegmentFigures &fig = figures[e];
     const BSplineCurve &curve = net.segments()[e].curve;
@@ -114,7 +115,7 @@ std::optional<ReferenceDeviation> measureReferenceDeviation(const Surface &surfa
   const ReferenceSurface &reference = *net.reference();
   const Mesh mesh = tessellate(surface, {resolution, threads});
   std::vector<double> distance(mesh.positions.size());
-  tbb::parallel_for(std::size_t(0), mesh.positions.size(),
+  parallel::parallelFor(std::size_t(0), mesh.positions.size(),
                     [&](std::size_t i) { distance[i] = reference.signedDistance(mesh.positions[i]); });
   ReferenceDeviation result;
   result.resolution = resolution;

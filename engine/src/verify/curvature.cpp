@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "curvenet/error.hpp"
+#include "parallel/fork_join.hpp"
 
 namespace curvenet {
 inline namespace v1 {
@@ -101,7 +102,7 @@ std::vector<CurvatureSample> meshCurvature(const Surface &surface, const Mesh &m
   std::vector<CurvatureSample> out(mesh.positions.size());
   const double nan = std::numeric_limits<double>::quiet_NaN();
   // Each vertex is independent and written once: the result does not depend on threads.
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), 256), [&](const auto &range) {
+  parallel::parallelFor(tbb::blocked_range<std::size_t>(0, out.size(), 256), [&](const auto &range) {
     for (std::size_t v = range.begin(); v != range.end(); ++v) {
       const MeshDomainPoint &d = mesh.domainPoints[v];
       out[v] = d.face < 0 ? CurvatureSample{nan, nan, nan, nan, {}} : surfaceCurvature(surface, d.face, d.uv, options);
