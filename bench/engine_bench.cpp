@@ -138,40 +138,6 @@ struct KernelData {
 
 constexpr std::size_t kBatch = 4096;
 
-void kernelRibbonBench(benchmark::State &state, std::int64_t width) {
-  KernelData in(24, kBatch), out(9, kBatch);
-  ck::RibbonJets j;
-  for (int c = 0; c < 3; ++c)
-    j.P[c] = in.at(c, kBatch), j.dP[c] = in.at(3 + c, kBatch), j.T[c] = in.at(6 + c, kBatch),
-    j.dT[c] = in.at(9 + c, kBatch), j.C[c] = in.at(12 + c, kBatch), j.dC[c] = in.at(15 + c, kBatch);
-  const ck::DualSpan sigma{in.at(18, kBatch), in.at(19, kBatch), in.at(20, kBatch)};
-  const ck::DualSpan delta{in.at(21, kBatch), in.at(22, kBatch), in.at(23, kBatch)};
-  ck::DualVec3Span o{{out.at(0, kBatch), out.at(1, kBatch), out.at(2, kBatch)},
-                     {out.at(3, kBatch), out.at(4, kBatch), out.at(5, kBatch)},
-                     {out.at(6, kBatch), out.at(7, kBatch), out.at(8, kBatch)}};
-  for (auto _ : state) {
-    ck::ribbonPoints(kBatch, j, sigma, delta, o, width);
-    benchmark::ClobberMemory();
-  }
-  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * kBatch));
-}
-
-void kernelAccumulateBench(benchmark::State &state, std::int64_t width) {
-  KernelData in(12, kBatch), out(9, kBatch);
-  const ck::DualSpan w{in.at(0, kBatch), in.at(1, kBatch), in.at(2, kBatch)};
-  const ck::ConstDualVec3Span x{{in.at(3, kBatch), in.at(4, kBatch), in.at(5, kBatch)},
-                                {in.at(6, kBatch), in.at(7, kBatch), in.at(8, kBatch)},
-                                {in.at(9, kBatch), in.at(10, kBatch), in.at(11, kBatch)}};
-  ck::DualVec3Span o{{out.at(0, kBatch), out.at(1, kBatch), out.at(2, kBatch)},
-                     {out.at(3, kBatch), out.at(4, kBatch), out.at(5, kBatch)},
-                     {out.at(6, kBatch), out.at(7, kBatch), out.at(8, kBatch)}};
-  for (auto _ : state) {
-    ck::accumulate(kBatch, w, x, o, width);
-    benchmark::ClobberMemory();
-  }
-  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * kBatch));
-}
-
 /// The whole G² position kernel for a pentagon over random per-side data.
 void kernelGregoryBench(benchmark::State &state, std::int64_t width) {
   constexpr int n = 5;
@@ -281,8 +247,6 @@ int registerAll() {
   }
   for (const ck::Width &w : ck::availableWidths()) {
     const std::string suffix = "/" + w.name + "x" + std::to_string(w.lanes);
-    benchmark::RegisterBenchmark(("KernelRibbonPoints" + suffix).c_str(), kernelRibbonBench, w.id);
-    benchmark::RegisterBenchmark(("KernelAccumulate" + suffix).c_str(), kernelAccumulateBench, w.id);
     benchmark::RegisterBenchmark(("KernelGregoryPositionsG2n5" + suffix).c_str(), kernelGregoryBench, w.id);
     benchmark::RegisterBenchmark(("KernelTable9" + suffix).c_str(), kernelTableBench, w.id, false);
     benchmark::RegisterBenchmark(("KernelTable9Slopes" + suffix).c_str(), kernelTableBench, w.id, true);

@@ -57,64 +57,6 @@ TEST(Kernels, WidthsIncludeReferenceAndBest) {
   for (const auto &w : widths) std::printf("kernel width %s: %zu lanes\n", w.name.c_str(), w.lanes);
 }
 
-TEST(Kernels, RibbonPointsAgreeAcrossWidthsAndWithScalarFormula) {
-  std::mt19937_64 rng(7);
-  for (bool parabolic : {false, true}) {
-    Soa jets(18, kCount, &rng), params(6, kCount, &rng);
-    ck::RibbonJets j;
-    for (int c = 0; c < 3; ++c) {
-      j.P[c] = jets[c], j.dP[c] = jets[3 + c], j.T[c] = jets[6 + c], j.dT[c] = jets[9 + c];
-      if (parabolic) j.C[c] = jets[12 + c], j.dC[c] = jets[15 + c];
-    }
-    const ck::DualSpan sigma{params[0], params[1], params[2]}, delta{params[3], params[4], params[5]};
-    Soa reference(9, kCount);
-    ck::ribbonPoints(kCount, j, sigma, delta, span9(reference), ck::kScalarReference);
-    // The reference is the textbook chain rule.
-    for (size_t k = 0; k < kCount; ++k)
-      for (int c = 0; c < 3; ++c) {
-        const double d = delta.v[k], P = j.P[c][k], dP = j.dP[c][k], T = j.T[c][k], dT = j.dT[c][k];
-        const double C = parabolic ? j.C[c][k] : 0, dC = parabolic ? j.dC[c][k] : 0;
-        const double value = P + d * T + 0.5 * d * d * C;
-        const double du = (dP + d * dT + 0.5 * d * d * dC) * sigma.du[k] + (T + d * C) * delta.du[k];
-        const double dv = (dP + d * dT + 0.5 * d * d * dC) * sigma.dv[k] + (T + d * C) * delta.dv[k];
-        ASSERT_NEAR(reference[c][k], value, 1e-12 * (1 + std::abs(value)));
-        ASSERT_NEAR(reference[3 + c][k], du, 1e-12 * (1 + std::abs(du)));
-        ASSERT_NEAR(reference[6 + c][k], dv, 1e-12 * (1 + std::abs(dv)));
-      }
-    for (const auto &w : ck::availableWidths()) {
-      Soa out(9, kCount);
-      ck::ribbonPoints(kCount, j, sigma, delta, span9(out), w.id);
-      EXPECT_LE(relativeDifference(out.data, reference.data), 1e-12) << w.name << (parabolic ? " parabolic" : " linear");
-    }
-  }
-}
-
-TEST(Kernels, AccumulationAgreesAcrossWidthsAndWithScalarFormula) {
-  std::mt19937_64 rng(11);
-  Soa w(3, kCount, &rng), x(9, kCount, &rng), start(9, kCount, &rng);
-  const ck::DualSpan weight{w[0], w[1], w[2]};
-  const ck::ConstDualVec3Span xs{{x[0], x[1], x[2]}, {x[3], x[4], x[5]}, {x[6], x[7], x[8]}};
-  const double c[3] = {0.3, -1.7, 2.5};
-  Soa reference = start;
-  ck::accumulate(kCount, weight, xs, span9(reference), ck::kScalarReference);
-  ck::accumulateConstant(kCount, weight, c, span9(reference), ck::kScalarReference);
-  for (size_t k = 0; k < kCount; ++k)
-    for (int a = 0; a < 3; ++a) {
-      const double v = start[a][k] + w[0][k] * x[a][k] + w[0][k] * c[a];
-      const double du = start[3 + a][k] + w[1][k] * x[a][k] + w[0][k] * x[3 + a][k] + w[1][k] * c[a];
-      const double dv = start[6 + a][k] + w[2][k] * x[a][k] + w[0][k] * x[6 + a][k] + w[2][k] * c[a];
-      ASSERT_NEAR(reference[a][k], v, 1e-12 * (1 + std::abs(v)));
-      ASSERT_NEAR(reference[3 + a][k], du, 1e-12 * (1 + std::abs(du)));
-      ASSERT_NEAR(reference[6 + a][k], dv, 1e-12 * (1 + std::abs(dv)));
-    }
-  for (const auto &width : ck::availableWidths()) {
-    Soa out = start;
-    ck::accumulate(kCount, weight, xs, span9(out), width.id);
-    ck::accumulateConstant(kCount, weight, c, span9(out), width.id);
-    EXPECT_LE(relativeDifference(out.data, reference.data), 1e-12) << width.name;
-  }
-}
-
 // ---- sweepline solver ------------------------------------------------------
 
 struct SideFrame {
@@ -122,19 +64,10 @@ struct SideFrame {
   Vec2 p0, e;
 };
 
+/// Side 0 of the regular n-gon: its sweep constants and its frame's origin and direction.
 SideFrame sideZeroFrame(int n) {
   const RegularDomain domain(n);
-  const Vec2 p0 = domain.corner(0), e = domain.corner(1) - p0;
-  auto inFrame = [&](const Vec2 &v) { return Vec2{dot(v, e) / dot(e, e), cross(e, v) / dot(e, e)}; };
-  const Vec2 a = inFrame(domain.corner(-1) - p0), b = inFrame(domain.corner(2) - domain.corner(1));
-  ck::SweepFrame f{a.x, a.y, b.x, b.y};
-  const double det = cross(a, b);
-  if (std::abs(det) < 1e-12) f.parallel = true;
-  else {
-    const double alpha = cross(Vec2{1, 0}, b) / det;
-    f.apexX = a.x * alpha, f.apexY = a.y * alpha;
-  }
-  return {f, p0, e};
+  return {domain.sweepFrame(0), domain.corner(0), domain.corner(1) - domain.corner(0)};
 }
 
 /// `count` uniformly random points strictly inside the regular n-gon, in

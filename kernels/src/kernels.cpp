@@ -19,19 +19,6 @@
 namespace curvenet {
 namespace kernels_impl {
 namespace ck = curvenet::kernels;
-struct RibbonArgs {
-  const ck::RibbonJets *jets;
-  ck::DualSpan sigma, delta;
-  ck::DualVec3Span out;
-};
-
-struct AccumulateArgs {
-  ck::DualSpan w;
-  ck::ConstDualVec3Span x; ///< null v[0]: the constant c instead
-  double c[3];
-  ck::DualVec3Span out;
-};
-
 struct TableArgs {
   const ck::PolynomialTable *table;
   const double *s;
@@ -73,65 +60,6 @@ template <class D, class Body> HWY_INLINE void forEachVector(D d, std::size_t co
   for (; k + lanes <= count; k += lanes) body(d, k);
   const hn::CappedTag<double, 1> one;
   for (; k < count; ++k) body(one, k);
-}
-
-template <class D> HWY_INLINE void ribbonBody(D d, std::size_t k, const RibbonArgs &a) {
-  const auto su = hn::LoadU(d, a.sigma.du + k), sv = hn::LoadU(d, a.sigma.dv + k);
-  const auto dl = hn::LoadU(d, a.delta.v + k), dlu = hn::LoadU(d, a.delta.du + k), dlv = hn::LoadU(d, a.delta.dv + k);
-  const bool parabolic = a.jets->C[0] != nullptr;
-  const auto half = hn::Set(d, 0.5);
-  const auto h = hn::Mul(half, hn::Mul(dl, dl)); // ½ δ²
-  for (int c = 0; c < 3; ++c) {
-    const auto P = hn::LoadU(d, a.jets->P[c] + k), dP = hn::LoadU(d, a.jets->dP[c] + k);
-    const auto T = hn::LoadU(d, a.jets->T[c] + k), dT = hn::LoadU(d, a.jets->dT[c] + k);
-    // value P + δ T; ∂ = σ' (P' + δ T') + δ' T
-    auto value = hn::MulAdd(dl, T, P);
-    auto slope = hn::MulAdd(dl, dT, dP);
-    auto across = T;
-    if (parabolic) {
-      // + ½ δ² C; ∂ gains σ' ½ δ² C' + δ' δ C
-      const auto C = hn::LoadU(d, a.jets->C[c] + k), dC = hn::LoadU(d, a.jets->dC[c] + k);
-      value = hn::MulAdd(h, C, value);
-      slope = hn::MulAdd(h, dC, slope);
-      across = hn::MulAdd(dl, C, T);
-    }
-    hn::StoreU(value, d, a.out.v[c] + k);
-    hn::StoreU(hn::MulAdd(su, slope, hn::Mul(dlu, across)), d, a.out.du[c] + k);
-    hn::StoreU(hn::MulAdd(sv, slope, hn::Mul(dlv, across)), d, a.out.dv[c] + k);
-  }
-}
-
-void RibbonPoints(std::size_t count, const RibbonArgs &args, bool reference) {
-  auto body = [&](auto d, std::size_t k) { ribbonBody(d, k, args); };
-  if (reference) forEachVector(hn::CappedTag<double, 1>(), count, body);
-  else forEachVector(hn::ScalableTag<double>(), count, body);
-}
-
-template <class D> HWY_INLINE void accumulateBody(D d, std::size_t k, const AccumulateArgs &a) {
-  const auto w = hn::LoadU(d, a.w.v + k), wu = hn::LoadU(d, a.w.du + k), wv = hn::LoadU(d, a.w.dv + k);
-  for (int c = 0; c < 3; ++c) {
-    auto v = hn::LoadU(d, a.out.v[c] + k), u = hn::LoadU(d, a.out.du[c] + k), dv = hn::LoadU(d, a.out.dv[c] + k);
-    if (a.x.v[0]) {
-      const auto x = hn::LoadU(d, a.x.v[c] + k), xu = hn::LoadU(d, a.x.du[c] + k), xv = hn::LoadU(d, a.x.dv[c] + k);
-      v = hn::MulAdd(w, x, v);
-      u = hn::MulAdd(wu, x, hn::MulAdd(w, xu, u));
-      dv = hn::MulAdd(wv, x, hn::MulAdd(w, xv, dv));
-    } else {
-      const auto x = hn::Set(d, a.c[c]);
-      v = hn::MulAdd(w, x, v);
-      u = hn::MulAdd(wu, x, u);
-      dv = hn::MulAdd(wv, x, dv);
-    }
-    hn::StoreU(v, d, a.out.v[c] + k);
-    hn::StoreU(u, d, a.out.du[c] + k);
-    hn::StoreU(dv, d, a.out.dv[c] + k);
-  }
-}
-
-void Accumulate(std::size_t count, const AccumulateArgs &args, bool reference) {
-  auto body = [&](auto d, std::size_t k) { accumulateBody(d, k, args); };
-  if (reference) forEachVector(hn::CappedTag<double, 1>(), count, body);
-  else forEachVector(hn::ScalableTag<double>(), count, body);
 }
 
 /// The interval of s (see PolynomialTable): its grid cell's first, then at
@@ -723,8 +651,6 @@ HWY_AFTER_NAMESPACE();
 
 namespace curvenet {
 namespace kernels_impl {
-HWY_EXPORT(RibbonPoints);
-HWY_EXPORT(Accumulate);
 HWY_EXPORT(SweepRoots);
 HWY_EXPORT(SweepRootsRobust);
 HWY_EXPORT(GregoryPositions);
@@ -771,26 +697,6 @@ Width bestWidth() {
     if (w.id != kScalarReference && tableIndex(w.id, r) == index) return w;
   }
   return availableWidths().back();
-}
-
-void ribbonPoints(std::size_t count, const RibbonJets &jets, DualSpan sigma, DualSpan delta, DualVec3Span out,
-                  std::int64_t width) {
-  bool reference;
-  const std::size_t index = tableIndex(width, reference);
-  HWY_DISPATCH_TABLE(RibbonPoints)[index](count, {&jets, sigma, delta, out}, reference);
-}
-
-void accumulate(std::size_t count, DualSpan w, ConstDualVec3Span x, DualVec3Span out, std::int64_t width) {
-  bool reference;
-  const std::size_t index = tableIndex(width, reference);
-  HWY_DISPATCH_TABLE(Accumulate)[index](count, {w, x, {0, 0, 0}, out}, reference);
-}
-
-void accumulateConstant(std::size_t count, DualSpan w, const double c[3], DualVec3Span out, std::int64_t width) {
-  bool reference;
-  const std::size_t index = tableIndex(width, reference);
-  HWY_DISPATCH_TABLE(Accumulate)[index](count, {w, {{nullptr, nullptr, nullptr}, {}, {}}, {c[0], c[1], c[2]}, out},
-                                        reference);
 }
 
 void gregoryJets(std::size_t count, const GregoryJetSamples &samples, const GregoryCorner *corners, DualVec3Span out,

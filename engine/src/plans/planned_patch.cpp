@@ -233,14 +233,13 @@ void Patch::evaluatePositions(std::size_t count, const double *u, const double *
         distance[k] = y[k];
         power[k] = g2 ? y[k] * y[k] * y[k] : y[k] * y[k];
       }
-      const kernels::SweepFrame frame = domain_.sweepFrame(i);
-      if (!radial) {
-        double *unused = scratch.at(3 * n + i);
-        kernels::hermiteSweepRoots(m, frame, x, y, s, unused);
-      } else if (frame.parallel) {
-        for (std::size_t k = 0; k < m; ++k) s[k] = x[k] - y[k] * (frame.ax / frame.ay);
+      if (radial) {
+        // Closed form: the domain's own formula, as evaluate() uses it.
+        for (std::size_t k = 0; k < m; ++k)
+          s[k] = domain_.radialSideParameter(i, Dual::u(u[first + k]), Dual::vCoord(v[first + k])).v;
       } else {
-        for (std::size_t k = 0; k < m; ++k) s[k] = frame.apexX - frame.apexY * (x[k] - frame.apexX) / (y[k] - frame.apexY);
+        double *unused = scratch.at(3 * n + i);
+        kernels::hermiteSweepRoots(m, domain_.sweepFrame(i), x, y, s, unused);
       }
       side[i] = s;
     }

@@ -43,39 +43,10 @@ std::vector<Width> availableWidths();
 /// The width kBestWidth resolves to on this CPU.
 Width bestWidth();
 
-/// Batch of Dual numbers (read-only).
-struct DualSpan {
-  const double *v, *du, *dv;
-};
 /// Batch of Dual 3-vectors: component c of the value is v[c][k], of ∂/∂u du[c][k], …
 struct DualVec3Span {
   double *v[3], *du[3], *dv[3];
 };
-struct ConstDualVec3Span {
-  const double *v[3], *du[3], *dv[3];
-};
-/// Per-sample ribbon data along one side, at each sample's side parameter:
-/// P, T (and C for parabolic ribbons) with their side-parameter derivatives.
-/// C and dC null for linear ribbons.
-struct RibbonJets {
-  const double *P[3], *dP[3], *T[3], *dT[3];
-  const double *C[3] = {nullptr, nullptr, nullptr}, *dC[3] = {nullptr, nullptr, nullptr};
-};
-
-/// (b) Ribbon points with exact first derivatives:
-/// out[k] = P(σ_k) + δ_k T(σ_k) [+ ½ δ_k² C(σ_k)], where the jets are taken at
-/// σ_k's value and σ, δ carry their domain derivatives (chain rule).
-void ribbonPoints(std::size_t count, const RibbonJets &jets, DualSpan sigma, DualSpan delta, DualVec3Span out,
-                  std::int64_t width = kBestWidth);
-
-/// (a) Weighted accumulation, out[k] += w[k] · x[k] in Dual arithmetic
-/// (value, ∂u, ∂v by the product rule). out may not alias x.
-void accumulate(std::size_t count, DualSpan w, ConstDualVec3Span x, DualVec3Span out,
-                std::int64_t width = kBestWidth);
-/// (a) Weighted accumulation of one constant vector, out[k] += w[k] · c.
-void accumulateConstant(std::size_t count, DualSpan w, const double c[3], DualVec3Span out,
-                        std::int64_t width = kBestWidth);
-
 /// A piecewise degree-5 polynomial in one parameter s ∈ [0, 1] with `dims`
 /// coordinates (RibbonTable's storage): interval j covers (starts[j],
 /// ends[j]] (the first also s = 0) and holds 6 rows of `paddedDims`
