@@ -5,8 +5,10 @@
 
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <optional>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "bezier/bezier_surface.hpp"
@@ -136,13 +138,17 @@ TEST(PartialRebuild, MeasuredEdgeCurvatureReachesOneRingFurther) {
   expectSameSurface(edit.surface, Surface::build(edited, options), "master-slave");
 }
 
-TEST(PartialRebuild, CurvesOfTransfiniteBuiltinsMatchAFullBuild) {
+// One test per network, so that the suite's parallel runner can spread them.
+class PartialRebuildOf : public testing::TestWithParam<const char *> {};
+
+TEST_P(PartialRebuildOf, CurvesOfTransfiniteBuiltinsMatchAFullBuild) {
   // A moved control point anywhere (T-nodes, X-nodes, 2-sided faces,
   // connection curves, boundaries, long splines through several vertices):
   // the rebuild equals a full one. Edits that change the topology (a curve
   // no longer meeting another where it did) fall back to a full build; each
   // network must see some partial ones.
-  for (const char *name : {"saddle-nodes", "concave-L", "sphere-dodecahedron", "torus-mixed"}) {
+  {
+    const char *name = GetParam();
     const NetworkDescription description = builtinNetwork(name);
     const Network network = Network::build(description);
     const Surface before = Surface::build(network, {Scheme::GregoryG2});
@@ -168,6 +174,14 @@ TEST(PartialRebuild, CurvesOfTransfiniteBuiltinsMatchAFullBuild) {
     EXPECT_GT(partial, 0) << name;
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Builtins, PartialRebuildOf,
+                         testing::Values("saddle-nodes", "concave-L", "sphere-dodecahedron", "torus-mixed"),
+                         [](const testing::TestParamInfo<const char *> &param) {
+                           std::string name = param.param;
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
 
 TEST(PartialRebuild, TopologyChangeFallsBackToAFullBuild) {
   const NetworkDescription description = builtinNetwork("pentagon");

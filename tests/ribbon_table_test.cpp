@@ -4,7 +4,9 @@
 // Surface path.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 #include <random>
 
 #include "bezier/bezier_surface.hpp"
@@ -15,6 +17,15 @@
 #include "ribbons/ribbon_table.hpp"
 
 using namespace curvenet;
+
+namespace {
+// A test name part for a scheme: gtest allows letters, digits and '_'.
+std::string schemeParamName(const testing::TestParamInfo<SurfaceOptions> &info) {
+  std::string name = std::to_string(info.index) + "_" + schemeName(info.param.scheme);
+  std::replace(name.begin(), name.end(), '-', '_');
+  return name;
+}
+} // namespace
 
 TEST(RibbonTable, ReproducesQuinticsAndKinksAtBreaks) {
   // Two coordinates: a quintic (a quintic Hermite interpolant is exact for
@@ -72,12 +83,15 @@ TEST(RibbonTable, MatchesExactRibbonsOfEveryBuiltin) {
   }
 }
 
-TEST(PlannedPositions, MatchPointwiseEvaluationOnEveryBuiltin) {
+// One test per scheme, so that the suite's parallel runner (and the slow
+// sanitizer builds) can spread them over its jobs.
+class PlannedPositions : public testing::TestWithParam<SurfaceOptions> {};
+
+TEST_P(PlannedPositions, MatchPointwiseEvaluationOnEveryBuiltin) {
+  const SurfaceOptions o = GetParam();
   for (const BuiltinInfo &info : builtinNetworks()) {
     const Network network = Network::build(builtinNetwork(info.name));
-    for (SurfaceOptions o : {SurfaceOptions{Scheme::GregoryG1, Sweepline::Radial},
-                             SurfaceOptions{Scheme::GregoryG2, Sweepline::Hermite},
-                             SurfaceOptions{Scheme::CompositeRibbon}}) {
+    {
       const Surface surface = Surface::build(network, o);
       BoundingBox box;
       for (const Vertex &v : network.vertices()) box.add(v.position);
@@ -107,14 +121,21 @@ TEST(PlannedPositions, MatchPointwiseEvaluationOnEveryBuiltin) {
   }
 }
 
-TEST(BatchEvaluation, MatchesPointwiseEvaluationAtRandomDomainPoints) {
+INSTANTIATE_TEST_SUITE_P(Schemes, PlannedPositions,
+                         testing::Values(SurfaceOptions{Scheme::GregoryG1, Sweepline::Radial},
+                                         SurfaceOptions{Scheme::GregoryG2, Sweepline::Hermite},
+                                         SurfaceOptions{Scheme::CompositeRibbon}),
+                         schemeParamName);
+
+class BatchEvaluation : public testing::TestWithParam<SurfaceOptions> {};
+
+TEST_P(BatchEvaluation, MatchesPointwiseEvaluationAtRandomDomainPoints) {
   std::mt19937 rng(9);
   std::uniform_real_distribution<double> unit(0, 1);
+  const SurfaceOptions o = GetParam();
   for (const BuiltinInfo &info : builtinNetworks()) {
     const Network network = Network::build(builtinNetwork(info.name));
-    for (SurfaceOptions o : {SurfaceOptions{Scheme::GregoryG1, Sweepline::Radial},
-                             SurfaceOptions{Scheme::GregoryG1, Sweepline::Hermite},
-                             SurfaceOptions{Scheme::GregoryG2, Sweepline::Hermite}}) {
+    {
       const Surface surface = Surface::build(network, o);
       BoundingBox box;
       for (const Vertex &v : network.vertices()) box.add(v.position);
@@ -148,3 +169,9 @@ TEST(BatchEvaluation, MatchesPointwiseEvaluationAtRandomDomainPoints) {
     }
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Schemes, BatchEvaluation,
+                         testing::Values(SurfaceOptions{Scheme::GregoryG1, Sweepline::Radial},
+                                         SurfaceOptions{Scheme::GregoryG1, Sweepline::Hermite},
+                                         SurfaceOptions{Scheme::GregoryG2, Sweepline::Hermite}),
+                         schemeParamName);
