@@ -13,10 +13,11 @@ dir=$repo/build-fuzz
 
 CURVENET_EXTRA_PACKAGES="clang-14 libclang-rt-14-dev" bash "$repo/tools/scripts/setup.sh" --install-only
 # -O1 with line tables: libFuzzer's recommendation, and a quicker build for CI.
-# HWY_COMPILE_ONLY_STATIC: the harnesses drive readers and the builder, not the
-# SIMD kernels (tests/kernels_test.cpp checks every width), so the kernels are
-# compiled for the baseline target only; clang would otherwise compile them for
-# every x86 target Highway knows, which alone took four minutes here.
+# HWY_COMPILE_ONLY_STATIC and kernels/CMakeLists.txt: the harnesses drive the
+# readers and the builder, not the SIMD kernels (tests/kernels_test.cpp checks
+# every width, under ASan + UBSan in sanitize.sh), so the kernels are compiled
+# for the baseline target only and without instrumentation; instrumented for
+# every target they alone took four minutes to compile.
 [ -f "$dir/CMakeCache.txt" ] || CC=clang-14 CXX=clang++-14 cmake -S "$repo" -B "$dir" -G Ninja \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG -DHWY_COMPILE_ONLY_STATIC=1" \
   -DCURVENET_BUILD_FUZZERS=ON -DCURVENET_BUILD_TOOLS=OFF -DCURVENET_BUILD_TESTS=OFF -DCURVENET_BUILD_BENCH=OFF
