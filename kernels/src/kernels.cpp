@@ -9,7 +9,9 @@
 #include <hwy/highway.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 
 #include "curvenet/kernels/kernels.hpp"
 
@@ -29,6 +31,7 @@ struct GregoryArgs {
   const ck::GregorySamples *in;
   const ck::GregoryCorner *corners;
   double *const *out;
+  const ck::GregoryCornerTerms *terms; ///< per corner, G² only
 };
 
 struct GregoryJetArgs {
@@ -112,15 +115,29 @@ template <bool Slopes, class D> HWY_INLINE void evaluateTableWith(D d, std::size
                           hn::ConcatUpperUpper(d, t2, t0), hn::ConcatUpperUpper(d, t3, t1)};
         for (std::size_t c = 0; c < 4 && x + c < dims; ++c) hn::StoreU(col[c], d, out[x + c] + k);
       };
+      // Intervals first, a chunk at a time, then the polynomials: apart, the
+      // lookups' chains of dependent loads overlap with one another instead
+      // of stalling the polynomial work behind each sample's lookup.
+      constexpr std::size_t kChunk = 64;
+      HWY_ALIGN std::size_t interval[kChunk];
+      HWY_ALIGN double local[kChunk], inverse[kChunk];
+      std::size_t chunkStart = 0, chunkEnd = 0;
       for (; k + 4 <= count; k += 4) {
+        if (k + 4 > chunkEnd) {
+          chunkStart = k, chunkEnd = std::min(count, k + kChunk);
+          for (std::size_t q = k; q < chunkEnd; ++q) {
+            const double s = a.s[q];
+            const std::size_t j = tableInterval(tb, s);
+            interval[q - k] = j, inverse[q - k] = tb.inverseWidths[j];
+            local[q - k] = (s - tb.starts[j]) * tb.inverseWidths[j];
+          }
+        }
         const double *c[4];
         V t[4], w[4];
-        for (int q = 0; q < 4; ++q) {
-          const double s = a.s[k + q];
-          const std::size_t j = tableInterval(tb, s);
-          c[q] = tb.coefficients + j * 6 * row;
-          t[q] = hn::Set(d, (s - tb.starts[j]) * tb.inverseWidths[j]);
-          w[q] = hn::Set(d, tb.inverseWidths[j]);
+        for (std::size_t q = 0; q < 4; ++q) {
+          const std::size_t at = k - chunkStart + q;
+          c[q] = tb.coefficients + interval[at] * 6 * row;
+          t[q] = hn::Set(d, local[at]), w[q] = hn::Set(d, inverse[at]);
         }
         for (std::size_t x = 0; x < dims; x += 4) {
           V value[4], slope[4];
@@ -180,6 +197,31 @@ template <int M, class D, class V> HWY_INLINE void reciprocals(D d, V (&x)[M]) {
   x[0] = inverse;
 }
 
+/// reciprocals for eight values with the products taken as a tree (pairs,
+/// quads, all): the same multiplications, but a dependency chain of depth 3
+/// on each side of the division instead of 7, so that the corners of a
+/// sample overlap in the pipeline.
+template <class D, class V> HWY_INLINE void reciprocals(D d, V (&x)[8]) {
+  const V pair[4] = {hn::Mul(x[0], x[1]), hn::Mul(x[2], x[3]), hn::Mul(x[4], x[5]), hn::Mul(x[6], x[7])};
+  const V quad[2] = {hn::Mul(pair[0], pair[1]), hn::Mul(pair[2], pair[3])};
+  const V all = hn::Mul(quad[0], quad[1]);
+  if (HWY_UNLIKELY(!hn::AllFalse(d, hn::Not(hn::Gt(all, hn::Set(d, 1e-250)))))) {
+    const V tiny = hn::Set(d, 1e-300), one = hn::Set(d, 1.0);
+    for (V &v : x) v = hn::Div(one, hn::Max(v, tiny));
+    return;
+  }
+  const V inverse = hn::Div(hn::Set(d, 1.0), all);
+  const V quadInverse[2] = {hn::Mul(inverse, quad[1]), hn::Mul(inverse, quad[0])};
+  V pairInverse[4];
+  for (int q = 0; q < 2; ++q)
+    pairInverse[2 * q] = hn::Mul(quadInverse[q], pair[2 * q + 1]), pairInverse[2 * q + 1] = hn::Mul(quadInverse[q], pair[2 * q]);
+  for (int p = 0; p < 4; ++p) {
+    const V first = x[2 * p];
+    x[2 * p] = hn::Mul(pairInverse[p], x[2 * p + 1]);
+    x[2 * p + 1] = hn::Mul(pairInverse[p], first);
+  }
+}
+
 /// Powers 1, s, s², s³ and 1, t, t², t³, and the reciprocals of the eight
 /// denominators s^{3−p} + t^{3−r} of the G² correction patch, (p, r) ≠ (0, 0)
 /// row by row.
@@ -199,52 +241,69 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t 
   const ck::GregorySamples &in = *a.in;
   const int n = in.sides;
   const V one = hn::Set(d, 1.0), half = hn::Set(d, 0.5);
+  V side[ck::GregorySamples::kMaxSides], blend[ck::GregorySamples::kMaxSides];
+  for (int i = 0; i < n; ++i) side[i] = hn::LoadU(d, in.s[i] + k), blend[i] = hn::LoadU(d, in.blend[i] + k);
   V acc[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
+  // The ribbon terms gathered per ribbon: R_i enters corner i at δ = t_i =
+  // 1 − s_{i−1} with weight B_i and corner i + 1 at δ = s_{i+1} with weight
+  // B_{i+1}, so its share is (B_i + B_{i+1}) P_i + (B_i t_i + B_{i+1} s_{i+1}) T_i
+  // [+ ½ (B_i t_i² + B_{i+1} s_{i+1}²) C_i]: each ribbon value is read once.
+  for (int i = 0; i < n; ++i) {
+    const int prev = i == 0 ? n - 1 : i - 1, next = i + 1 == n ? 0 : i + 1;
+    const V t = hn::Sub(one, side[prev]);
+    const V atCorner = hn::Mul(blend[i], t), atNext = hn::Mul(blend[next], side[next]);
+    const V wP = hn::Add(blend[i], blend[next]), wT = hn::Add(atCorner, atNext);
+    V wC = hn::Zero(d);
+    if constexpr (Parabolic) wC = hn::Mul(half, hn::MulAdd(atCorner, t, hn::Mul(atNext, side[next])));
+    for (int c = 0; c < 3; ++c) {
+      acc[c] = hn::MulAdd(wP, hn::LoadU(d, in.P[i][c] + k), acc[c]);
+      acc[c] = hn::MulAdd(wT, hn::LoadU(d, in.T[i][c] + k), acc[c]);
+      if constexpr (Parabolic) acc[c] = hn::MulAdd(wC, hn::LoadU(d, in.C[i][c] + k), acc[c]);
+    }
+  }
+  // − Σ B_i Q_i(s_i, t_i).
   for (int i = 0; i < n; ++i) {
     const int prev = i == 0 ? n - 1 : i - 1;
-    const V s = hn::LoadU(d, in.s[i] + k), t = hn::Sub(one, hn::LoadU(d, in.s[prev] + k));
-    const V blend = hn::LoadU(d, in.blend[i] + k);
-    // R_{i−1}(s_{i−1}, s) + R_i(s, t).
-    V term[3];
-    const V s2 = hn::Mul(s, s), t2 = hn::Mul(t, t);
-    const V hs2 = hn::Mul(half, s2), ht2 = hn::Mul(half, t2);
-    for (int c = 0; c < 3; ++c) {
-      V left = hn::MulAdd(s, hn::LoadU(d, in.T[prev][c] + k), hn::LoadU(d, in.P[prev][c] + k));
-      V right = hn::MulAdd(t, hn::LoadU(d, in.T[i][c] + k), hn::LoadU(d, in.P[i][c] + k));
-      if constexpr (Parabolic) {
-        left = hn::MulAdd(hs2, hn::LoadU(d, in.C[prev][c] + k), left);
-        right = hn::MulAdd(ht2, hn::LoadU(d, in.C[i][c] + k), right);
-      }
-      term[c] = hn::Sub(hn::Add(left, right), hn::Set(d, a.corners[i].v[0][c]));
-    }
-    // − Q: each rational term contributes −f (wa a + wb b), wa = x / (x + y), wb = 1 − wa.
+    const V s = side[i], t = hn::Sub(one, side[prev]);
     const double(*vec)[3] = a.corners[i].v;
-    auto subtract = [&](V f, V wa, int slot) {
-      const V fa = hn::Mul(f, wa), fb = hn::Sub(f, fa);
-      for (int c = 0; c < 3; ++c)
-        term[c] = hn::NegMulAdd(fa, hn::Set(d, vec[slot][c]), hn::NegMulAdd(fb, hn::Set(d, vec[slot + 1][c]), term[c]));
-    };
+    V q[3];
     if constexpr (Parabolic) {
+      // Q in the form of GregoryCornerTerms (a00 is in taylor[0][0]).
       V sp[4], tp[4], den[8];
       g2CornerWeights(d, s, t, sp, tp, den);
+      const ck::GregoryCornerTerms &terms = a.terms[i];
+      V ratio[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
       int j = 0;
-      int slot = 1;
       for (int p = 0; p <= 2; ++p)
         for (int r = 0; r <= 2; ++r) {
           if (!p && !r) continue;
-          const double factorial = (p == 2 ? 0.5 : 1.0) * (r == 2 ? 0.5 : 1.0);
-          const V f = hn::Mul(hn::Set(d, factorial), hn::Mul(sp[p], tp[r]));
-          subtract(f, hn::Mul(sp[3 - p], den[j++]), slot);
-          slot += 2;
+          const V g = r ? hn::Mul(tp[r], den[j]) : den[j];
+          for (int c = 0; c < 3; ++c) ratio[c] = hn::MulAdd(g, hn::Set(d, terms.rational[j][c]), ratio[c]);
+          ++j;
         }
+      for (int c = 0; c < 3; ++c) {
+        V h[3];
+        for (int p = 0; p <= 2; ++p)
+          h[p] = hn::MulAdd(t, hn::MulAdd(t, hn::Set(d, terms.taylor[p][2][c]), hn::Set(d, terms.taylor[p][1][c])),
+                            hn::Set(d, terms.taylor[p][0][c]));
+        q[c] = hn::MulAdd(sp[3], ratio[c], hn::MulAdd(s, hn::MulAdd(s, h[2], h[1]), h[0]));
+      }
     } else {
+      // a00 + Σ f (wa a + wb b), wa = x / (x + y), wb = 1 − wa.
+      for (int c = 0; c < 3; ++c) q[c] = hn::Set(d, vec[0][c]);
+      auto add = [&](V f, V wa, int slot) {
+        const V fa = hn::Mul(f, wa), fb = hn::Sub(f, fa);
+        for (int c = 0; c < 3; ++c)
+          q[c] = hn::MulAdd(fa, hn::Set(d, vec[slot][c]), hn::MulAdd(fb, hn::Set(d, vec[slot + 1][c]), q[c]));
+      };
+      const V s2 = hn::Mul(s, s), t2 = hn::Mul(t, t);
       V den[3] = {hn::Add(s, t2), hn::Add(s2, t), hn::Add(s, t)};
       reciprocals(d, den);
-      subtract(s, hn::Mul(s, den[0]), 1);
-      subtract(t, hn::Mul(s2, den[1]), 3);
-      subtract(hn::Mul(s, t), hn::Mul(s, den[2]), 5);
+      add(s, hn::Mul(s, den[0]), 1);
+      add(t, hn::Mul(s2, den[1]), 3);
+      add(hn::Mul(s, t), hn::Mul(s, den[2]), 5);
     }
-    for (int c = 0; c < 3; ++c) acc[c] = hn::MulAdd(blend, term[c], acc[c]);
+    for (int c = 0; c < 3; ++c) acc[c] = hn::NegMulAdd(blend[i], q[c], acc[c]);
   }
   for (int c = 0; c < 3; ++c) hn::StoreU(acc[c], d, a.out[c] + k);
 }
@@ -713,11 +772,32 @@ void evaluateTable(std::size_t count, const PolynomialTable &table, const double
   HWY_DISPATCH_TABLE(EvaluateTable)[index](count, {&table, s, values, slopes}, reference);
 }
 
+GregoryCornerTerms gregoryCornerTerms(const GregoryCorner &corner) {
+  const auto &v = corner.v;
+  GregoryCornerTerms q{};
+  int slot = 1, j = 0;
+  for (int c = 0; c < 3; ++c) q.taylor[0][0][c] = v[0][c];
+  for (int p = 0; p <= 2; ++p)
+    for (int r = 0; r <= 2; ++r) {
+      if (!p && !r) continue;
+      const double factorial = (p == 2 ? 0.5 : 1.0) * (r == 2 ? 0.5 : 1.0);
+      for (int c = 0; c < 3; ++c)
+        q.taylor[p][r][c] = factorial * v[slot + 1][c], q.rational[j][c] = factorial * (v[slot][c] - v[slot + 1][c]);
+      slot += 2, ++j;
+    }
+  return q;
+}
+
 void gregoryPositions(std::size_t count, const GregorySamples &samples, const GregoryCorner *corners,
-                      double *const out[3], std::int64_t width) {
+                      double *const out[3], std::int64_t width, const GregoryCornerTerms *terms) {
   bool reference;
   const std::size_t index = tableIndex(width, reference);
-  HWY_DISPATCH_TABLE(GregoryPositions)[index](count, {&samples, corners, out}, reference);
+  std::array<GregoryCornerTerms, GregorySamples::kMaxSides> computed;
+  if (samples.parabolic && !terms) {
+    for (int i = 0; i < samples.sides; ++i) computed[i] = gregoryCornerTerms(corners[i]);
+    terms = computed.data();
+  }
+  HWY_DISPATCH_TABLE(GregoryPositions)[index](count, {&samples, corners, out, terms}, reference);
 }
 
 std::size_t hermiteSweepRoots(std::size_t count, const SweepFrame &frame, const double *x, const double *y, double *s,

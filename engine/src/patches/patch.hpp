@@ -20,10 +20,11 @@ class EvaluationPlan;
 
 /// What the fast evaluation paths of a Gregory patch need besides a plan:
 /// each side's ribbon as a RibbonTable (P, T; G²: also C) and each corner's
-/// correction-patch vectors.
+/// correction-patch vectors (G²: also in the positions kernel's form).
 struct PatchTables {
   std::vector<RibbonTable> sides;
   std::vector<kernels::GregoryCorner> corners;
+  std::vector<kernels::GregoryCornerTerms> cornerTerms; ///< G² only
   std::size_t memory() const;
 };
 

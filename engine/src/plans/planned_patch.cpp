@@ -85,7 +85,8 @@ kernels::GregoryCorner Patch::cornerVectors(int i) const {
 }
 
 std::size_t PatchTables::memory() const {
-  std::size_t bytes = corners.size() * sizeof(kernels::GregoryCorner);
+  std::size_t bytes = corners.size() * sizeof(kernels::GregoryCorner) +
+                      cornerTerms.size() * sizeof(kernels::GregoryCornerTerms);
   for (const RibbonTable &t : sides) bytes += t.memory();
   return bytes;
 }
@@ -126,6 +127,7 @@ const PatchTables &Patch::tables() const {
         t.sides.emplace_back(6, ribbons_[i].breakpoints(), exact);
       }
       t.corners.push_back(cornerVectors(i));
+      if (g2) t.cornerTerms.push_back(kernels::gregoryCornerTerms(t.corners.back()));
     }
   });
   return tables_->tables;
@@ -192,7 +194,8 @@ void Patch::gregoryPositionsFrom(std::size_t count, const double *const *sideVal
       if (g2) in.C[i][c] = jets[6 + c];
     }
   }
-  kernels::gregoryPositions(count, in, t.corners.data(), out);
+  kernels::gregoryPositions(count, in, t.corners.data(), out, kernels::kBestWidth,
+                            g2 ? t.cornerTerms.data() : nullptr);
 }
 
 void Patch::evaluatePositions(std::size_t count, const double *u, const double *v, double *const out[3]) const {

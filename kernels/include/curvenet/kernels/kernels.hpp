@@ -89,13 +89,32 @@ struct GregoryCorner {
   double v[17][3];
 };
 
+/// A G² corner's correction patch rearranged for positions: with
+/// f_pq = s^p t^q / (p! q!) and W_pq as above,
+/// Q = a00 + Σ f_pq W_pq = Σ_{p,q} s^p t^q taylor[p][q]
+///                         + s³ Σ_{(p,q)≠(0,0)} t^q / (s^{3−p} + t^{3−q}) rational[j],
+/// taylor[p][q] = b_pq / (p! q!) (taylor[0][0] = a00), rational[j] =
+/// (a_pq − b_pq) / (p! q!), j counting (p, q) row by row: a polynomial in
+/// Horner form and one product per rational term instead of a weighted pair.
+struct GregoryCornerTerms {
+  double taylor[3][3][3];
+  double rational[8][3];
+};
+
+/// The rearranged form of a G² corner (17 vectors).
+GregoryCornerTerms gregoryCornerTerms(const GregoryCorner &corner);
+
 /// (b) Gregory patch positions (paper 000 eqs. 16–18, 22):
 /// out[c][k] = Σ_i B_i (R_{i−1}(s_{i−1}, s_i) + R_i(s_i, t_i) − Q_i(s_i, t_i)),
 /// t_i = 1 − s_{i−1}, R(σ, δ) = P(σ) + δ T(σ) [+ ½ δ² C(σ)]. The rational
 /// weights of each corner share one division (batch inversion). Samples
 /// exactly at a corner (s_i = t_i = 0) give that corner's finite limit.
+/// G² uses each corner's GregoryCornerTerms: pass them in `terms` (one per
+/// side, from gregoryCornerTerms) when calling often with the same corners;
+/// null computes them on each call.
 void gregoryPositions(std::size_t count, const GregorySamples &samples, const GregoryCorner *corners,
-                      double *const out[3], std::int64_t width = kBestWidth);
+                      double *const out[3], std::int64_t width = kBestWidth,
+                      const GregoryCornerTerms *terms = nullptr);
 
 /// gregoryPositions' data with the first derivatives over the domain: of
 /// the side parameters and blends (∂/∂u, ∂/∂v), and of the ribbons along
