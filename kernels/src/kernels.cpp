@@ -74,6 +74,8 @@ HWY_INLINE std::size_t tableInterval(const ck::PolynomialTable &tb, double s) {
                            : scaled < static_cast<double>(tb.cells) ? static_cast<std::size_t>(scaled)
                                                                     : tb.cells - 1;
   std::size_t j = tb.cellFirst[cell];
+  // One step at most: the first interval's end is stored with the cell.
+  if (tb.cellFirstEnd) return j + (tb.cellFirstEnd[cell] < s);
   for (int q = 0; q < tb.steps; ++q) j += (j + 1 < tb.intervals) & (tb.ends[j] < s);
   return j;
 }

@@ -43,6 +43,7 @@ template <class F> double fastest(F &&f, int repeats = 3) {
 }
 
 struct SchemeFigures {
+  Scheme scheme{};
   std::string name;
   double build = 0;          ///< fences and ribbons (Surface::build), s
   double pointwise = 0;      ///< `points` random domain points through Surface::evaluate, s
@@ -54,9 +55,53 @@ struct SchemeFigures {
   std::size_t planBytes = 0;
 };
 
-SchemeFigures measure(const Network &network, Scheme scheme, int resolution, int points, int threads) {
+/// Cold, warm and all-thread evaluation of face interiors on one thread, for
+/// the given schemes. The schemes take turns within each round and each
+/// figure is the fastest of its rounds, so slow spells of a shared machine
+/// reach every scheme alike and the ratios between them stay meaningful.
+void measureEvaluation(const Network &network, std::vector<SchemeFigures *> figures, int resolution, int threads,
+                       int rounds) {
+  std::vector<Surface> surfaces;
+  for (SchemeFigures *f : figures) {
+    f->cold = f->warm = f->warmThreads = INFINITY;
+    surfaces.push_back(Surface::build(network, {f->scheme}));
+  }
+  auto seconds = [](auto &&run) {
+    const auto t0 = Clock::now();
+    run();
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+  };
+  for (int round = 0; round < rounds; ++round) {
+    {
+      tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+      for (std::size_t k = 0; k < figures.size(); ++k) {
+        // Cold: a surface fresh from Surface::build (untimed) and no plans.
+        const Surface fresh = Surface::build(network, surfaces[k].options());
+        clearEvaluationPlans();
+        figures[k]->cold = std::min(figures[k]->cold, seconds([&] {
+          figures[k]->interiorPoints = evaluateFaceInteriors(fresh, {resolution, 1}).size();
+        }));
+        figures[k]->planBytes = evaluationPlanCache().bytes; // this scheme's plans alone
+      }
+      for (const Surface &surface : surfaces) (void)evaluateFaceInteriors(surface, {resolution, 1}); // plans again
+      for (int repeat = 0; repeat < 2; ++repeat)
+        for (std::size_t k = 0; k < figures.size(); ++k)
+          figures[k]->warm = std::min(figures[k]->warm, seconds([&] { evaluateFaceInteriors(surfaces[k], {resolution, 1}); }));
+    }
+    for (int repeat = 0; repeat < 2; ++repeat)
+      for (std::size_t k = 0; k < figures.size(); ++k)
+        figures[k]->warmThreads = std::min(figures[k]->warmThreads, seconds([&] {
+          evaluateFaceInteriors(surfaces[k], {resolution, threads});
+        }));
+  }
+}
+
+/// Construction, pointwise evaluation and tessellation of one scheme; with
+/// `evaluation`, also its face-interior figures (measureEvaluation, alone).
+SchemeFigures measure(const Network &network, Scheme scheme, int resolution, int points, int threads,
+                      bool evaluation) {
   SchemeFigures f;
-  f.name = schemeName(scheme);
+  f.scheme = scheme, f.name = schemeName(scheme);
   std::optional<Surface> surface;
   f.build = fastest([&] { surface = Surface::build(network, {scheme}); });
   // Random points inside each face's domain polygon, faces in turn.
@@ -80,21 +125,9 @@ SchemeFigures measure(const Network &network, Scheme scheme, int resolution, int
       for (const auto &[face, uv] : samples) sum += surface->evaluate(face, uv).point.x;
       if (!std::isfinite(sum)) std::fprintf(stderr, "non-finite point\n");
     });
-    // Cold: a surface fresh from Surface::build (untimed) and no plans.
-    f.cold = INFINITY;
-    for (int k = 0; k < 3; ++k) {
-      const Surface fresh = Surface::build(network, {scheme});
-      clearEvaluationPlans();
-      const auto t0 = Clock::now();
-      f.interiorPoints = evaluateFaceInteriors(fresh, {resolution, 1}).size();
-      f.cold = std::min(f.cold, std::chrono::duration<double>(Clock::now() - t0).count());
-    }
-    (void)evaluateFaceInteriors(*surface, {resolution, 1}); // this surface's tables
-    f.warm = fastest([&] { evaluateFaceInteriors(*surface, {resolution, 1}); }, 5);
     f.tessellation = fastest([&] { f.meshPoints = tessellate(*surface, {resolution, 1}).positions.size(); });
   }
-  f.warmThreads = fastest([&] { evaluateFaceInteriors(*surface, {resolution, threads}); }, 5);
-  f.planBytes = evaluationPlanCache().bytes;
+  if (evaluation) measureEvaluation(network, {&f}, resolution, threads, 3);
   return f;
 }
 
@@ -119,8 +152,11 @@ Command addBenchCommand(CLI::App &app) {
             const Network network = Network::build(loadNetworkInput(o->input), o->input);
             const int threads = o->threads > 0 ? o->threads : tbb::info::default_concurrency();
             std::vector<SchemeFigures> figures;
+            // The Gregory schemes' evaluation figures are compared with each
+            // other: they are measured together, in turns (measureEvaluation).
             for (Scheme s : {Scheme::GregoryG1, Scheme::GregoryG2, Scheme::CompositeRibbon})
-              figures.push_back(measure(network, s, o->resolution, o->points, threads));
+              figures.push_back(measure(network, s, o->resolution, o->points, threads, s == Scheme::CompositeRibbon));
+            measureEvaluation(network, {&figures[0], &figures[1]}, o->resolution, threads, 7);
             const SchemeFigures &g1 = figures[0], &g2 = figures[1];
             auto perSecond = [](std::size_t n, double s) { return s > 0 ? n / s : 0.0; };
             nlohmann::json out;

@@ -163,6 +163,11 @@ RibbonTable::RibbonTable(int dims, std::vector<double> breaks, const Exact &exac
     while (j + 1 < ends_.size() && ends_[j] < to) ++j;
     steps_ = std::max(steps_, static_cast<int>(j - cellFirst_[cell]));
   }
+  if (steps_ <= 1) {
+    cellFirstEnd_.resize(cells_);
+    for (std::size_t cell = 0; cell < cells_; ++cell)
+      cellFirstEnd_[cell] = cellFirst_[cell] + 1 < ends_.size() ? ends_[cellFirst_[cell]] : INFINITY;
+  }
 }
 
 void RibbonTable::evaluate(double s, double *values, double *slopes) const {
@@ -187,11 +192,13 @@ kernels::PolynomialTable RibbonTable::view() const {
   t.intervals = starts_.size(), t.cells = cells_;
   t.starts = starts_.data(), t.ends = ends_.data(), t.inverseWidths = inverseWidths_.data();
   t.coefficients = coefficients_.data(), t.cellFirst = cellFirst_.data();
+  t.cellFirstEnd = cellFirstEnd_.empty() ? nullptr : cellFirstEnd_.data();
   return t;
 }
 
 std::size_t RibbonTable::memory() const {
-  return (starts_.size() * 3 + coefficients_.size()) * sizeof(double) + cellFirst_.size() * sizeof(std::uint32_t);
+  return (starts_.size() * 3 + coefficients_.size() + cellFirstEnd_.size()) * sizeof(double) +
+         cellFirst_.size() * sizeof(std::uint32_t);
 }
 
 } // namespace v1

@@ -74,6 +74,7 @@ private:
   /// Per interval: 6 rows of paddedDims_ (t⁰ … t⁵ in local t ∈ [0, 1]), aligned for the kernels.
   std::vector<double> coefficients_;
   std::vector<std::uint32_t> cellFirst_;
+  std::vector<double> cellFirstEnd_; ///< when steps_ ≤ 1: see kernels::PolynomialTable
   std::size_t cells_ = 0;
   int steps_ = 0; ///< forward moves from a cell's first interval (see interval())
   double valueError_ = 0, slopeError_ = 0;

@@ -53,12 +53,15 @@ struct DualVec3Span {
 /// doubles, the coefficients of t⁰ … t⁵ in t = (s − starts[j]) ·
 /// inverseWidths[j]; rows are padded with zeros to a multiple of 4.
 /// cellFirst[c] is the first interval reaching c / cells; at most `steps`
-/// moves forward from it reach any s of the cell.
+/// moves forward from it reach any s of the cell. Optional, for steps ≤ 1:
+/// cellFirstEnd[c], the end of interval cellFirst[c] (+∞ for the last), so
+/// that the lookup reads one cell rather than a cell and then an interval.
 struct PolynomialTable {
   int dims = 0, paddedDims = 0, steps = 0;
   std::size_t intervals = 0, cells = 0;
   const double *starts = nullptr, *ends = nullptr, *inverseWidths = nullptr, *coefficients = nullptr;
   const std::uint32_t *cellFirst = nullptr;
+  const double *cellFirstEnd = nullptr;
 };
 
 /// (b) Batched ribbon evaluation: the table at s[0 .. count) into
