@@ -269,6 +269,14 @@ TEST(Kernels, GregoryPositionsAgreeAcrossWidthsAndWithTheFormula) {
         double *o[3] = {out[0], out[1], out[2]};
         ck::gregoryPositions(kCount, in, corners.data(), o, w.id);
         EXPECT_LE(relativeDifference(out.data, reference.data), 1e-12) << w.name << " n=" << n;
+        // Written as points with an offset: the same sums, the offset added last.
+        const double offset[3] = {1e3, -2.5, 0.125};
+        std::vector<double> points(3 * kCount);
+        ck::gregoryPositionsInterleaved(kCount, in, corners.data(), points.data(), offset, w.id);
+        std::size_t mismatches = 0;
+        for (size_t k = 0; k < kCount; ++k)
+          for (int c = 0; c < 3; ++c) mismatches += points[3 * k + c] != out[c][k] + offset[c];
+        EXPECT_EQ(mismatches, 0u) << w.name << " n=" << n << " (points)";
       }
     }
 }
@@ -288,42 +296,49 @@ TEST(Kernels, TableEvaluationAgreesAcrossWidthsAndWithHorner) {
     for (size_t j = 0; j < m; ++j)
       for (int r = 0; r < 6; ++r)
         for (int d = 0; d < dims; ++d) coefficients[(j * 6 + r) * padded + d] = u(rng);
-    const size_t cells = 64;
-    std::vector<std::uint32_t> first(cells);
-    int steps = 0;
-    for (size_t c = 0, j = 0; c < cells; ++c) {
-      while (j + 1 < m && ends[j] < double(c) / cells) ++j;
-      first[c] = static_cast<std::uint32_t>(j);
-      size_t last = j;
-      while (last + 1 < m && ends[last] < double(c + 1) / cells) ++last;
-      steps = std::max(steps, int(last - j));
-    }
-    ck::PolynomialTable table;
-    table.dims = dims, table.paddedDims = padded, table.steps = steps, table.intervals = m, table.cells = cells;
-    table.starts = starts.data(), table.ends = ends.data(), table.inverseWidths = inverse.data();
-    table.coefficients = coefficients.data(), table.cellFirst = first.data();
-    std::vector<double> s(kCount);
-    for (double &x : s) x = unit(rng);
-    s[0] = 0, s[1] = 1, s[2] = edges[3]; // the ends, and a break (the interval to its left)
-    std::vector<double> horner(dims * kCount), hornerSlope(dims * kCount);
-    for (size_t k = 0; k < kCount; ++k) {
-      size_t j = 0;
-      while (j + 1 < m && ends[j] < s[k]) ++j;
-      const double t = (s[k] - starts[j]) * inverse[j];
-      for (int d = 0; d < dims; ++d) {
-        double v = 0, dv = 0;
-        for (int r = 5; r >= 0; --r) v = v * t + coefficients[(j * 6 + r) * padded + d];
-        for (int r = 1; r <= 5; ++r) dv += r * coefficients[(j * 6 + r) * padded + d] * std::pow(t, r - 1);
-        horner[d * kCount + k] = v, hornerSlope[d * kCount + k] = dv * inverse[j];
+    // A coarse grid (several forward steps) and a fine one (at most one:
+    // the cells carry their first interval's end).
+    for (const size_t cells : {size_t{64}, size_t{2048}}) {
+      std::vector<std::uint32_t> first(cells);
+      std::vector<double> firstEnd(cells);
+      int steps = 0;
+      for (size_t c = 0, j = 0; c < cells; ++c) {
+        while (j + 1 < m && ends[j] < double(c) / cells) ++j;
+        first[c] = static_cast<std::uint32_t>(j);
+        firstEnd[c] = j + 1 < m ? ends[j] : INFINITY;
+        size_t last = j;
+        while (last + 1 < m && ends[last] < double(c + 1) / cells) ++last;
+        steps = std::max(steps, int(last - j));
       }
-    }
-    for (const auto &w : ck::availableWidths()) {
-      Soa values(dims, kCount), slopes(dims, kCount);
-      std::vector<double *> v(dims), sl(dims);
-      for (int d = 0; d < dims; ++d) v[d] = values[d], sl[d] = slopes[d];
-      ck::evaluateTable(kCount, table, s.data(), v.data(), sl.data(), w.id);
-      EXPECT_LE(relativeDifference(values.data, horner), 1e-12) << w.name << " dims " << dims;
-      EXPECT_LE(relativeDifference(slopes.data, hornerSlope), 1e-12) << w.name << " dims " << dims;
+      ASSERT_EQ(steps > 1, cells == 64);
+      ck::PolynomialTable table;
+      table.dims = dims, table.paddedDims = padded, table.steps = steps, table.intervals = m, table.cells = cells;
+      table.starts = starts.data(), table.ends = ends.data(), table.inverseWidths = inverse.data();
+      table.coefficients = coefficients.data(), table.cellFirst = first.data();
+      if (steps <= 1) table.cellFirstEnd = firstEnd.data();
+      std::vector<double> s(kCount);
+      for (double &x : s) x = unit(rng);
+      s[0] = 0, s[1] = 1, s[2] = edges[3]; // the ends, and a break (the interval to its left)
+      std::vector<double> horner(dims * kCount), hornerSlope(dims * kCount);
+      for (size_t k = 0; k < kCount; ++k) {
+        size_t j = 0;
+        while (j + 1 < m && ends[j] < s[k]) ++j;
+        const double t = (s[k] - starts[j]) * inverse[j];
+        for (int d = 0; d < dims; ++d) {
+          double v = 0, dv = 0;
+          for (int r = 5; r >= 0; --r) v = v * t + coefficients[(j * 6 + r) * padded + d];
+          for (int r = 1; r <= 5; ++r) dv += r * coefficients[(j * 6 + r) * padded + d] * std::pow(t, r - 1);
+          horner[d * kCount + k] = v, hornerSlope[d * kCount + k] = dv * inverse[j];
+        }
+      }
+      for (const auto &w : ck::availableWidths()) {
+        Soa values(dims, kCount), slopes(dims, kCount);
+        std::vector<double *> v(dims), sl(dims);
+        for (int d = 0; d < dims; ++d) v[d] = values[d], sl[d] = slopes[d];
+        ck::evaluateTable(kCount, table, s.data(), v.data(), sl.data(), w.id);
+        EXPECT_LE(relativeDifference(values.data, horner), 1e-12) << w.name << " dims " << dims << " cells " << cells;
+        EXPECT_LE(relativeDifference(slopes.data, hornerSlope), 1e-12) << w.name << " dims " << dims << " cells " << cells;
+      }
     }
   }
 }

@@ -32,6 +32,8 @@ struct GregoryArgs {
   const ck::GregoryCorner *corners;
   double *const *out;
   const ck::GregoryCornerTerms *terms; ///< per corner, G² only
+  double *interleaved;                 ///< when set: points here (plus offset) instead of out
+  double offset[3];
 };
 
 struct GregoryJetArgs {
@@ -307,6 +309,11 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t 
     }
     for (int c = 0; c < 3; ++c) acc[c] = hn::NegMulAdd(blend[i], q[c], acc[c]);
   }
+  if (a.interleaved) {
+    hn::StoreInterleaved3(hn::Add(acc[0], hn::Set(d, a.offset[0])), hn::Add(acc[1], hn::Set(d, a.offset[1])),
+                          hn::Add(acc[2], hn::Set(d, a.offset[2])), d, a.interleaved + 3 * k);
+    return;
+  }
   for (int c = 0; c < 3; ++c) hn::StoreU(acc[c], d, a.out[c] + k);
 }
 
@@ -493,7 +500,9 @@ template <class D, class V = hn::Vec<D>> HWY_INLINE V sweepRadial(D d, const ck:
 /// |F| at an end of [0, 1] below which the robust solver takes that end as a
 /// root: a point on a neighbouring side may show no sign change after rounding.
 template <class D, class V = hn::Vec<D>> HWY_INLINE V sweepEndTolerance(D d, const ck::SweepFrame &f, V x, V y) {
-  const double abNorm = std::hypot(f.ax, f.ay) + std::hypot(f.bx, f.by);
+  // Plain square roots: the frame's vectors are of domain size (no overflow
+  // to guard against), and std::hypot cost 5% of a batch here.
+  const double abNorm = std::sqrt(f.ax * f.ax + f.ay * f.ay) + std::sqrt(f.bx * f.bx + f.by * f.by);
   return hn::Mul(hn::Set(d, 1e-13 * abNorm), hn::Add(hn::Set(d, 1.0), hn::Add(hn::Abs(x), hn::Abs(y))));
 }
 
@@ -790,8 +799,10 @@ GregoryCornerTerms gregoryCornerTerms(const GregoryCorner &corner) {
   return q;
 }
 
-void gregoryPositions(std::size_t count, const GregorySamples &samples, const GregoryCorner *corners,
-                      double *const out[3], std::int64_t width, const GregoryCornerTerms *terms) {
+namespace {
+void gregoryPositionsTo(std::size_t count, const GregorySamples &samples, const GregoryCorner *corners,
+                        double *const *out, double *interleaved, const double *offset, std::int64_t width,
+                        const GregoryCornerTerms *terms) {
   bool reference;
   const std::size_t index = tableIndex(width, reference);
   std::array<GregoryCornerTerms, GregorySamples::kMaxSides> computed;
@@ -799,7 +810,21 @@ void gregoryPositions(std::size_t count, const GregorySamples &samples, const Gr
     for (int i = 0; i < samples.sides; ++i) computed[i] = gregoryCornerTerms(corners[i]);
     terms = computed.data();
   }
-  HWY_DISPATCH_TABLE(GregoryPositions)[index](count, {&samples, corners, out, terms}, reference);
+  GregoryArgs args{&samples, corners, out, terms, interleaved, {0, 0, 0}};
+  if (offset) args.offset[0] = offset[0], args.offset[1] = offset[1], args.offset[2] = offset[2];
+  HWY_DISPATCH_TABLE(GregoryPositions)[index](count, args, reference);
+}
+} // namespace
+
+void gregoryPositions(std::size_t count, const GregorySamples &samples, const GregoryCorner *corners,
+                      double *const out[3], std::int64_t width, const GregoryCornerTerms *terms) {
+  gregoryPositionsTo(count, samples, corners, out, nullptr, nullptr, width, terms);
+}
+
+void gregoryPositionsInterleaved(std::size_t count, const GregorySamples &samples, const GregoryCorner *corners,
+                                 double *xyz, const double offset[3], std::int64_t width,
+                                 const GregoryCornerTerms *terms) {
+  gregoryPositionsTo(count, samples, corners, nullptr, xyz, offset, width, terms);
 }
 
 std::size_t hermiteSweepRoots(std::size_t count, const SweepFrame &frame, const double *x, const double *y, double *s,

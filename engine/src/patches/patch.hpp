@@ -28,6 +28,25 @@ struct PatchTables {
   std::size_t memory() const;
 };
 
+/// Where a batch of positions goes: structure-of-arrays arrays[c][k], or
+/// (with `points` set) points[k] = position + offset.
+struct PositionSink {
+  double *arrays[3] = {nullptr, nullptr, nullptr};
+  Vec3 *points = nullptr;
+  Vec3 offset{};
+  static PositionSink soa(double *const out[3]) { return {{out[0], out[1], out[2]}}; }
+  static PositionSink interleaved(Vec3 *out, const Vec3 &offset) { return {{}, out, offset}; }
+  /// The sink from sample `first` on.
+  PositionSink from(std::size_t first) const {
+    if (points) return interleaved(points + first, offset);
+    return {{arrays[0] + first, arrays[1] + first, arrays[2] + first}};
+  }
+  void set(std::size_t k, const Vec3 &p) const {
+    if (points) points[k] = p + offset;
+    else arrays[0][k] = p.x, arrays[1][k] = p.y, arrays[2][k] = p.z;
+  }
+};
+
 class Patch {
 public:
   /// `parabolic` (one per side, over the same linear ribbons) is required by
@@ -58,7 +77,13 @@ public:
   /// (kernels::gregoryPositions); composite-ribbon through evaluatePlanned.
   /// Thread-safe.
   void evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t first, std::size_t count,
-                                double *const out[3]) const;
+                                double *const out[3]) const {
+    evaluatePlannedPositions(plan, first, count, PositionSink::soa(out));
+  }
+  /// The same into a sink (e.g. points with the surface's origin added,
+  /// written by the kernel itself).
+  void evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t first, std::size_t count,
+                                const PositionSink &out) const;
   /// evaluate() at many domain points (u[k], v[k]) at once: Hermite roots
   /// by the batched solver, exact ribbons, the derivative kernel
   /// (kernels::gregoryJets). Gregory schemes with the radial or cubic
@@ -72,7 +97,10 @@ public:
   /// Gregory schemes with radial or cubic Hermite sweeps; other schemes and
   /// sweeps evaluate point by point. Agrees with evaluate() to ~1e-12
   /// relative inside the domain. Thread-safe; scratch is per thread.
-  void evaluatePositions(std::size_t count, const double *u, const double *v, double *const out[3]) const;
+  void evaluatePositions(std::size_t count, const double *u, const double *v, double *const out[3]) const {
+    evaluatePositions(count, u, v, PositionSink::soa(out));
+  }
+  void evaluatePositions(std::size_t count, const double *u, const double *v, const PositionSink &out) const;
   /// Plan resolution from which evaluatePlanned uses the tables: below it
   /// a face has too few samples to repay building them.
   static constexpr int kTableResolution = 32;
@@ -94,7 +122,7 @@ private:
   /// The Gregory formula's positions from every side's parameter and
   /// corner blend values (arrays of `count`): tables, then the kernel.
   void gregoryPositionsFrom(std::size_t count, const double *const *side, const double *const *blend,
-                            double *const out[3]) const;
+                            const PositionSink &out) const;
   /// Corner i's correction-patch vectors (kernels::GregoryCorner order).
   kernels::GregoryCorner cornerVectors(int i) const;
 

@@ -728,13 +728,13 @@ void Surface::evaluatePositions(int face, std::span<const Vec2> uv, std::span<Ve
   const Patch &patch = *impl_->patches.at(face);
   constexpr std::size_t kChunk = 1024;
   thread_local std::vector<double> scratch;
-  scratch.resize(5 * kChunk);
-  double *u = scratch.data(), *v = u + kChunk, *xyz[3] = {v + kChunk, v + 2 * kChunk, v + 3 * kChunk};
+  scratch.resize(2 * kChunk);
+  double *u = scratch.data(), *v = u + kChunk;
   for (std::size_t first = 0; first < uv.size(); first += kChunk) {
     const std::size_t m = std::min(kChunk, uv.size() - first);
     for (std::size_t k = 0; k < m; ++k) u[k] = uv[first + k].x, v[k] = uv[first + k].y;
-    patch.evaluatePositions(m, u, v, xyz);
-    for (std::size_t k = 0; k < m; ++k) out[first + k] = Vec3{xyz[0][k], xyz[1][k], xyz[2][k]} + impl_->origin;
+    // The kernel writes the points, the model's origin added.
+    patch.evaluatePositions(m, u, v, PositionSink::interleaved(out.data() + first, impl_->origin));
   }
 }
 

@@ -134,7 +134,7 @@ const PatchTables &Patch::tables() const {
 }
 
 void Patch::evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t first, std::size_t count,
-                                     double *const out[3]) const {
+                                     const PositionSink &out) const {
   const int n = domain_.sides();
   CURVENET_CHECK(plan.key().sides == n && plan.key().scheme == options_.scheme,
                  "plan for " + std::to_string(plan.key().sides) + " sides used on a patch with " + std::to_string(n));
@@ -142,8 +142,7 @@ void Patch::evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t fir
     thread_local std::vector<DualVec3> values;
     values.resize(count);
     evaluatePlanned(plan, first, count, values.data());
-    for (std::size_t k = 0; k < count; ++k)
-      out[0][k] = values[k].v.x, out[1][k] = values[k].v.y, out[2][k] = values[k].v.z;
+    for (std::size_t k = 0; k < count; ++k) out.set(k, values[k].v);
     return;
   }
   std::array<const double *, kMaxSides> side, blend;
@@ -152,7 +151,7 @@ void Patch::evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t fir
 }
 
 void Patch::gregoryPositionsFrom(std::size_t count, const double *const *sideValues, const double *const *blendValues,
-                                 double *const out[3]) const {
+                                 const PositionSink &out) const {
   // Blocks whose ribbon values (up to 9 arrays per side) stay in the L1
   // cache between the table pass and the kernel pass.
   constexpr std::size_t kBlock = 64;
@@ -161,8 +160,7 @@ void Patch::gregoryPositionsFrom(std::size_t count, const double *const *sideVal
     std::array<const double *, kMaxSides> side, blend;
     for (std::size_t first = 0; first < count; first += kBlock) {
       for (int i = 0; i < n; ++i) side[i] = sideValues[i] + first, blend[i] = blendValues[i] + first;
-      double *const to[3] = {out[0] + first, out[1] + first, out[2] + first};
-      gregoryPositionsFrom(std::min(kBlock, count - first), side.data(), blend.data(), to);
+      gregoryPositionsFrom(std::min(kBlock, count - first), side.data(), blend.data(), out.from(first));
     }
     return;
   }
@@ -194,18 +192,22 @@ void Patch::gregoryPositionsFrom(std::size_t count, const double *const *sideVal
       if (g2) in.C[i][c] = jets[6 + c];
     }
   }
-  kernels::gregoryPositions(count, in, t.corners.data(), out, kernels::kBestWidth,
-                            g2 ? t.cornerTerms.data() : nullptr);
+  const kernels::GregoryCornerTerms *terms = g2 ? t.cornerTerms.data() : nullptr;
+  if (out.points) {
+    static_assert(sizeof(Vec3) == 3 * sizeof(double), "points are read as three doubles each");
+    const double offset[3] = {out.offset.x, out.offset.y, out.offset.z};
+    kernels::gregoryPositionsInterleaved(count, in, t.corners.data(), &out.points[0].x, offset, kernels::kBestWidth,
+                                         terms);
+  } else {
+    kernels::gregoryPositions(count, in, t.corners.data(), out.arrays, kernels::kBestWidth, terms);
+  }
 }
 
-void Patch::evaluatePositions(std::size_t count, const double *u, const double *v, double *const out[3]) const {
+void Patch::evaluatePositions(std::size_t count, const double *u, const double *v, const PositionSink &out) const {
   const int n = domain_.sides();
   const bool gregory = options_.scheme == Scheme::GregoryG1 || options_.scheme == Scheme::GregoryG2;
   if (!gregory || options_.sweepline == Sweepline::QuinticHermite) {
-    for (std::size_t k = 0; k < count; ++k) {
-      const Vec3 p = evaluate(u[k], v[k]).v;
-      out[0][k] = p.x, out[1][k] = p.y, out[2][k] = p.z;
-    }
+    for (std::size_t k = 0; k < count; ++k) out.set(k, evaluate(u[k], v[k]).v);
     return;
   }
   // Chunks small enough for the per-thread scratch to stay in the L2 cache.
@@ -268,8 +270,7 @@ void Patch::evaluatePositions(std::size_t count, const double *u, const double *
       for (std::size_t k = 0; k < m; ++k) product[i][k] *= total[k];
       blend[i] = product[i];
     }
-    double *const to[3] = {out[0] + first, out[1] + first, out[2] + first};
-    gregoryPositionsFrom(m, side.data(), blend.data(), to);
+    gregoryPositionsFrom(m, side.data(), blend.data(), out.from(first));
   }
 }
 

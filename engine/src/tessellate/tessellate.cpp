@@ -189,12 +189,10 @@ std::vector<Vec3> evaluateFaceInteriors(const Surface &surface, const Tessellati
   std::vector<Vec3> points(total);
   const Vec3 origin = surface.origin();
   forEachTile(tiles, total, [&](const Tile &tile) {
-    thread_local std::vector<double> xyz;
-    xyz.resize(3 * tile.count);
-    double *out[3] = {xyz.data(), xyz.data() + tile.count, xyz.data() + 2 * tile.count};
-    SurfaceAccess::patch(surface, tile.face)->evaluatePlannedPositions(*plans[tile.face], tile.first, tile.count, out);
-    Vec3 *to = points.data() + faceBase[tile.face] + tile.first;
-    for (std::size_t k = 0; k < tile.count; ++k) to[k] = Vec3{out[0][k], out[1][k], out[2][k]} + origin;
+    // The kernel writes the points, the surface's origin added.
+    SurfaceAccess::patch(surface, tile.face)
+        ->evaluatePlannedPositions(*plans[tile.face], tile.first, tile.count,
+                                   PositionSink::interleaved(points.data() + faceBase[tile.face] + tile.first, origin));
   });
   return points;
 }

@@ -118,6 +118,11 @@ GregoryCornerTerms gregoryCornerTerms(const GregoryCorner &corner);
 void gregoryPositions(std::size_t count, const GregorySamples &samples, const GregoryCorner *corners,
                       double *const out[3], std::int64_t width = kBestWidth,
                       const GregoryCornerTerms *terms = nullptr);
+/// gregoryPositions writing points instead: xyz[3k + c] = position_c +
+/// offset[c] (e.g. an array of 3-double points, with the model's origin).
+void gregoryPositionsInterleaved(std::size_t count, const GregorySamples &samples, const GregoryCorner *corners,
+                                 double *xyz, const double offset[3], std::int64_t width = kBestWidth,
+                                 const GregoryCornerTerms *terms = nullptr);
 
 /// gregoryPositions' data with the first derivatives over the domain: of
 /// the side parameters and blends (∂/∂u, ∂/∂v), and of the ribbons along
