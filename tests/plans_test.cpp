@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "curvenet/builtins.hpp"
+#include "curvenet/error.hpp"
 #include "curvenet/tessellate.hpp"
 #include "patches/domain.hpp"
 #include "plans/plan.hpp"
@@ -142,4 +143,34 @@ TEST(PlannedTessellation, ProgressReportsOnTheCallingThreadAndKeepTheBytes) {
   TessellationOptions cancelled{64, 2};
   cancelled.progress = [](double) { throw std::runtime_error("cancelled"); };
   EXPECT_THROW(tessellate(surface, cancelled), std::runtime_error);
+}
+
+TEST(FaceInteriors, AreTheTessellationsInteriorPointsAndIgnoreTheThreadCount) {
+  // evaluateFaceInteriors (positions kernel, points written with the origin)
+  // against the interior vertices tessellate() places (jet kernel), on
+  // networks with several faces and n-gons; the caller-buffer form gives the
+  // same bytes for one and two threads and refuses a short buffer.
+  for (const char *name : {"pentagon", "torus-mixed"}) {
+    const Network network = Network::build(builtinNetwork(name));
+    BoundingBox box;
+    for (const Vertex &v : network.vertices()) box.add(v.position);
+    for (const SurfaceOptions &o : schemes()) {
+      const Surface surface = Surface::build(network, o);
+      const TessellationOptions options{36, 1};
+      const std::vector<Vec3> points = evaluateFaceInteriors(surface, options);
+      const Mesh mesh = tessellate(surface, options);
+      ASSERT_EQ(points.size(), faceInteriorPoints(surface, 36)) << name << " " << label(o);
+      ASSERT_LE(points.size(), mesh.positions.size());
+      const std::size_t base = mesh.positions.size() - points.size();
+      double worst = 0;
+      for (std::size_t k = 0; k < points.size(); ++k) worst = std::max(worst, norm(points[k] - mesh.positions[base + k]));
+      EXPECT_LE(worst, 1e-12 * box.diagonal()) << name << " " << label(o);
+
+      std::vector<Vec3> two(points.size());
+      EXPECT_EQ(evaluateFaceInteriors(surface, two, {36, 2}), points.size());
+      EXPECT_EQ(std::memcmp(two.data(), points.data(), points.size() * sizeof(Vec3)), 0) << name << " " << label(o);
+      std::vector<Vec3> shorter(points.size() - 1);
+      EXPECT_THROW(evaluateFaceInteriors(surface, shorter, options), InputError);
+    }
+  }
 }

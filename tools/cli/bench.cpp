@@ -4,7 +4,7 @@
 // one run: per scheme the ribbon/fence construction time, the pointwise
 // evaluation of P random domain points, the evaluation of every face
 // interior's samples at resolution R through evaluation plans
-// (evaluateFaceInteriors: positions) — cold (a freshly built surface with
+// (evaluateFaceInteriors: positions, into one reused buffer) — cold (a freshly built surface with
 // the plan cache emptied: plans and ribbon tables built), warm (plans and
 // tables ready), on one thread and on all threads — and the whole
 // tessellation (positions, normals from exact derivatives, triangles).
@@ -66,6 +66,9 @@ void measureEvaluation(const Network &network, std::vector<SchemeFigures *> figu
     f->cold = f->warm = f->warmThreads = INFINITY;
     surfaces.push_back(Surface::build(network, {f->scheme}));
   }
+  // One output buffer, as a program evaluating repeatedly would keep: the
+  // figures time evaluation, not allocating and clearing the output.
+  std::vector<Vec3> points(faceInteriorPoints(surfaces.front(), resolution));
   auto seconds = [](auto &&run) {
     const auto t0 = Clock::now();
     run();
@@ -79,19 +82,19 @@ void measureEvaluation(const Network &network, std::vector<SchemeFigures *> figu
         const Surface fresh = Surface::build(network, surfaces[k].options());
         clearEvaluationPlans();
         figures[k]->cold = std::min(figures[k]->cold, seconds([&] {
-          figures[k]->interiorPoints = evaluateFaceInteriors(fresh, {resolution, 1}).size();
+          figures[k]->interiorPoints = evaluateFaceInteriors(fresh, points, {resolution, 1});
         }));
         figures[k]->planBytes = evaluationPlanCache().bytes; // this scheme's plans alone
       }
-      for (const Surface &surface : surfaces) (void)evaluateFaceInteriors(surface, {resolution, 1}); // plans again
+      for (const Surface &surface : surfaces) evaluateFaceInteriors(surface, points, {resolution, 1}); // plans again
       for (int repeat = 0; repeat < 2; ++repeat)
         for (std::size_t k = 0; k < figures.size(); ++k)
-          figures[k]->warm = std::min(figures[k]->warm, seconds([&] { evaluateFaceInteriors(surfaces[k], {resolution, 1}); }));
+          figures[k]->warm = std::min(figures[k]->warm, seconds([&] { evaluateFaceInteriors(surfaces[k], points, {resolution, 1}); }));
     }
     for (int repeat = 0; repeat < 2; ++repeat)
       for (std::size_t k = 0; k < figures.size(); ++k)
         figures[k]->warmThreads = std::min(figures[k]->warmThreads, seconds([&] {
-          evaluateFaceInteriors(surfaces[k], {resolution, threads});
+          evaluateFaceInteriors(surfaces[k], points, {resolution, threads});
         }));
   }
 }

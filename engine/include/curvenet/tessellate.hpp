@@ -74,6 +74,17 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options = {})
 /// options.threads; output independent of the thread count. Thread-safe.
 std::vector<Vec3> evaluateFaceInteriors(const Surface &surface, const TessellationOptions &options = {});
 
+/// Number of points evaluateFaceInteriors gives at `resolution` (≥ 1).
+std::size_t faceInteriorPoints(const Surface &surface, int resolution);
+
+/// evaluateFaceInteriors into a caller's buffer of at least
+/// faceInteriorPoints(surface, options.resolution) points (InputError if
+/// shorter): for repeated evaluation without allocating and clearing the
+/// output each time, and with every point written by the thread that
+/// evaluates it. Returns the number of points written. Thread-safe for
+/// distinct buffers.
+std::size_t evaluateFaceInteriors(const Surface &surface, std::span<Vec3> out, const TessellationOptions &options = {});
+
 /// After an edit (Surface::rebuildAfterEdit, same topology): updates `mesh`,
 /// which holds tessellate(before, options) of the surface before the edit,
 /// to equal tessellate(surface, options) bit for bit, re-evaluating only

@@ -169,31 +169,50 @@ template <class Run> void forEachTile(const std::vector<Tile> &tiles, std::size_
 
 } // namespace
 
-std::vector<Vec3> evaluateFaceInteriors(const Surface &surface, const TessellationOptions &options) {
-  if (options.resolution < 1) throw InputError("", "resolution", "must be at least 1");
+std::size_t faceInteriorPoints(const Surface &surface, int resolution) {
+  if (resolution < 1) throw InputError("", "resolution", "must be at least 1");
+  std::size_t count = 0;
+  for (int f = 0; f < surface.faceCount(); ++f) count += faceInteriorCount(surface.domainSides(f), resolution);
+  return count;
+}
+
+std::size_t evaluateFaceInteriors(const Surface &surface, std::span<Vec3> out, const TessellationOptions &options) {
+  const std::size_t count = faceInteriorPoints(surface, options.resolution);
+  if (out.size() < count)
+    throw InputError("", "output", "holds " + std::to_string(out.size()) + " points for " + std::to_string(count));
   const int faces = surface.faceCount();
   const bool transfinite = faces > 0 && SurfaceAccess::patch(surface, 0) != nullptr;
   if (!transfinite || !options.usePlans) {
     // The Bézier schemes (and the pointwise reference): tessellate's own points.
     const Mesh mesh = tessellate(surface, options);
     const Layout layout = makeLayout(surface, options.resolution);
-    return {mesh.positions.begin() + layout.faceBase.front(), mesh.positions.end()};
+    const auto interior = mesh.positions.begin() + static_cast<std::ptrdiff_t>(layout.faceBase.front());
+    CURVENET_CHECK(static_cast<std::size_t>(mesh.positions.end() - interior) == count,
+                   "face interiors: mesh and layout disagree on the sample count");
+    std::copy(interior, mesh.positions.end(), out.begin());
+    return count;
   }
   std::optional<tbb::global_control> limit;
   if (options.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, options.threads);
   std::vector<std::shared_ptr<const EvaluationPlan>> plans;
   std::size_t total = 0;
   const std::vector<Tile> tiles = planTiles(surface, options.resolution, plans, total, [](int) { return true; });
+  CURVENET_CHECK(total == count, "face interiors: plans and layout disagree on the sample count");
   std::vector<std::size_t> faceBase(static_cast<std::size_t>(faces) + 1, 0);
   for (int f = 0; f < faces; ++f) faceBase[f + 1] = faceBase[f] + plans[f]->size();
-  std::vector<Vec3> points(total);
   const Vec3 origin = surface.origin();
   forEachTile(tiles, total, [&](const Tile &tile) {
     // The kernel writes the points, the surface's origin added.
     SurfaceAccess::patch(surface, tile.face)
         ->evaluatePlannedPositions(*plans[tile.face], tile.first, tile.count,
-                                   PositionSink::interleaved(points.data() + faceBase[tile.face] + tile.first, origin));
+                                   PositionSink::interleaved(out.data() + faceBase[tile.face] + tile.first, origin));
   });
+  return count;
+}
+
+std::vector<Vec3> evaluateFaceInteriors(const Surface &surface, const TessellationOptions &options) {
+  std::vector<Vec3> points(faceInteriorPoints(surface, options.resolution));
+  evaluateFaceInteriors(surface, points, options);
   return points;
 }
 
