@@ -91,6 +91,8 @@ void measureEvaluation(const Network &network, std::vector<SchemeFigures *> figu
         for (std::size_t k = 0; k < figures.size(); ++k)
           figures[k]->warm = std::min(figures[k]->warm, seconds([&] { evaluateFaceInteriors(surfaces[k], points, {resolution, 1}); }));
     }
+    // Untimed first: TBB's workers wake up (they sleep after the serial part).
+    evaluateFaceInteriors(surfaces.front(), points, {resolution, threads});
     for (int repeat = 0; repeat < 2; ++repeat)
       for (std::size_t k = 0; k < figures.size(); ++k)
         figures[k]->warmThreads = std::min(figures[k]->warmThreads, seconds([&] {
