@@ -58,19 +58,7 @@ std::array<double, 3> hermiteWeight(double s, bool quintic) {
 Dual RegularDomain::radialSideParameter(int i, Dual u, Dual v) const {
   Dual x, y;
   sideFrame(i, u, v, x, y);
-  const Vec2 e = corner(i + 1) - corner(i);
-  const Vec2 a = inFrame(e, corner(i - 1) - corner(i));     // side i−1 leaving (0,0)
-  const Vec2 b = inFrame(e, corner(i + 2) - corner(i + 1)); // side i+1 leaving (1,0)
-  const double det = cross(a, b);
-  if (std::abs(det) < 1e-12) {
-    // Sides i−1 and i+1 are parallel (n = 4): the sweep lines are parallel to them.
-    return x - y * (a.x / a.y);
-  }
-  // Intersection X = α a = (1,0) + β b of the extended sides; the sweep line
-  // through X and (x, y) meets the base line y = 0 at s.
-  const double alpha = cross(Vec2{1, 0}, b) / det;
-  const Vec2 apex = a * alpha;
-  return Dual(apex.x) - Dual(apex.y) * (x - apex.x) / (y - apex.y);
+  return radialSideParameter(sweepFrame(i), x, y);
 }
 
 kernels::SweepFrame RegularDomain::sweepFrame(int i) const {

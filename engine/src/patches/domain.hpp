@@ -34,6 +34,14 @@ public:
   /// Radial sweep [CG84]: s_i along the line through the intersection of the
   /// extended sides i−1 and i+1 (a parallel sweep when they do not meet).
   Dual radialSideParameter(int i, Dual u, Dual v) const;
+  /// The same from side i's frame coordinates (x, y) (as perpendicularDistance
+  /// and sideFrame define them) and its sweepFrame(i): one division, for
+  /// batches that compute the frame once per side.
+  template <class T> static T radialSideParameter(const kernels::SweepFrame &frame, T x, T y) {
+    if (frame.parallel) return x - y * (frame.ax / frame.ay); // sweep lines parallel to sides i ± 1
+    // The sweep line through the apex and (x, y) meets the base line y = 0 at s.
+    return T(frame.apexX) - T(frame.apexY) * (x - frame.apexX) / (y - frame.apexY);
+  }
 
   /// Hermite sweepline (paper 000 eq. 20): (u,v) = (s,0) + d [a H(s) + b H(1−s)]
   /// in side i's frame. Returns s_i and d_i with derivatives (implicit

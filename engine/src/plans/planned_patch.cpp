@@ -239,9 +239,9 @@ void Patch::evaluatePositions(std::size_t count, const double *u, const double *
         power[k] = g2 ? y[k] * y[k] * y[k] : y[k] * y[k];
       }
       if (radial) {
-        // Closed form: the domain's own formula, as evaluate() uses it.
-        for (std::size_t k = 0; k < m; ++k)
-          s[k] = domain_.radialSideParameter(i, Dual::u(u[first + k]), Dual::vCoord(v[first + k])).v;
+        // Closed form: the domain's own formula (as evaluate() uses it) on the frame coordinates.
+        const kernels::SweepFrame frame = domain_.sweepFrame(i);
+        for (std::size_t k = 0; k < m; ++k) s[k] = RegularDomain::radialSideParameter(frame, x[k], y[k]);
       } else {
         double *unused = scratch.at(3 * n + i);
         kernels::hermiteSweepRoots(m, domain_.sweepFrame(i), x, y, s, unused);
