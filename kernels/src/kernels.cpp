@@ -129,38 +129,31 @@ template <bool Slopes, class D> HWY_INLINE void evaluateTableWith(D d, std::size
       for (; k + 4 <= count; k += 4) {
         if (k + 4 > chunkEnd) {
           chunkStart = k, chunkEnd = std::min(count, k + kChunk);
+          // With cellFirstEnd, the cells four at a time (tableInterval's
+          // clamping: NaN and s ≤ 0 to the first cell, s ≥ 1 to the last),
+          // then one read per cell; the rest through tableInterval.
+          HWY_ALIGN std::int64_t cellOf[kChunk];
+          std::size_t vectorEnd = k;
           if (tb.cellFirstEnd) {
-            // Cells four at a time (tableInterval's clamping: NaN and s ≤ 0
-            // to the first cell, s ≥ 1 to the last), then one read per cell.
-            HWY_ALIGN std::int64_t cellOf[kChunk];
             const hn::RebindToSigned<D> di;
             const V scale = hn::Set(d, static_cast<double>(tb.cells)), last = hn::Set(d, static_cast<double>(tb.cells - 1));
-            std::size_t q = k;
-            for (; q + 4 <= chunkEnd; q += 4) {
-              const V scaled = hn::Mul(hn::LoadU(d, a.s + q), scale);
+            for (; vectorEnd + 4 <= chunkEnd; vectorEnd += 4) {
+              const V scaled = hn::Mul(hn::LoadU(d, a.s + vectorEnd), scale);
               const V cell = hn::Min(hn::IfThenElseZero(hn::Gt(scaled, hn::Zero(d)), scaled), last);
-              hn::Store(hn::ConvertTo(di, cell), di, cellOf + (q - k));
+              hn::Store(hn::ConvertTo(di, cell), di, cellOf + (vectorEnd - k));
             }
-            for (std::size_t r = k; r < q; ++r) {
-              const double s = a.s[r];
-              const std::size_t cell = static_cast<std::size_t>(cellOf[r - k]);
-              const std::size_t j = tb.cellFirst[cell] + (tb.cellFirstEnd[cell] < s);
-              interval[r - k] = j, inverse[r - k] = tb.inverseWidths[j];
-              local[r - k] = (s - tb.starts[j]) * tb.inverseWidths[j];
+          }
+          for (std::size_t q = k; q < chunkEnd; ++q) {
+            const double s = a.s[q];
+            std::size_t j;
+            if (q < vectorEnd) {
+              const auto cell = static_cast<std::size_t>(cellOf[q - k]);
+              j = tb.cellFirst[cell] + (tb.cellFirstEnd[cell] < s);
+            } else {
+              j = tableInterval(tb, s);
             }
-            for (; q < chunkEnd; ++q) {
-              const double s = a.s[q];
-              const std::size_t j = tableInterval(tb, s);
-              interval[q - k] = j, inverse[q - k] = tb.inverseWidths[j];
-              local[q - k] = (s - tb.starts[j]) * tb.inverseWidths[j];
-            }
-          } else {
-            for (std::size_t q = k; q < chunkEnd; ++q) {
-              const double s = a.s[q];
-              const std::size_t j = tableInterval(tb, s);
-              interval[q - k] = j, inverse[q - k] = tb.inverseWidths[j];
-              local[q - k] = (s - tb.starts[j]) * tb.inverseWidths[j];
-            }
+            interval[q - k] = j, inverse[q - k] = tb.inverseWidths[j];
+            local[q - k] = (s - tb.starts[j]) * tb.inverseWidths[j];
           }
         }
         const double *c[4];

@@ -238,13 +238,13 @@ void Patch::evaluatePositions(std::size_t count, const double *u, const double *
         distance[k] = y[k];
         power[k] = g2 ? y[k] * y[k] * y[k] : y[k] * y[k];
       }
+      const kernels::SweepFrame frame = domain_.sweepFrame(i);
       if (radial) {
         // Closed form: the domain's own formula (as evaluate() uses it) on the frame coordinates.
-        const kernels::SweepFrame frame = domain_.sweepFrame(i);
         for (std::size_t k = 0; k < m; ++k) s[k] = RegularDomain::radialSideParameter(frame, x[k], y[k]);
       } else {
         double *unused = scratch.at(3 * n + i);
-        kernels::hermiteSweepRoots(m, domain_.sweepFrame(i), x, y, s, unused);
+        kernels::hermiteSweepRoots(m, frame, x, y, s, unused);
       }
       side[i] = s;
     }
@@ -391,20 +391,25 @@ void Patch::evaluateBatch(std::size_t count, const double *u, const double *v, D
   sides.resize(static_cast<std::size_t>(n) * count), blends.resize(static_cast<std::size_t>(n) * count);
   x.resize(count), y.resize(count), roots.resize(count), unused.resize(count);
   for (int i = 0; i < n; ++i) {
-    if (!radial) {
-      // Side i's frame coordinates, then all its cubic Hermite roots in one batched solve.
+    const kernels::SweepFrame frame = domain_.sweepFrame(i);
+    if (radial) {
+      // Closed form on the frame coordinates, the side's frame computed once.
       for (std::size_t k = 0; k < count; ++k) {
         Dual fx, fy;
         domain_.sideFrame(i, Dual::u(u[k]), Dual::vCoord(v[k]), fx, fy);
-        x[k] = fx.v, y[k] = fy.v;
+        sides[i * count + k] = RegularDomain::radialSideParameter(frame, fx, fy);
       }
-      kernels::hermiteSweepRoots(count, domain_.sweepFrame(i), x.data(), y.data(), roots.data(), unused.data());
+      continue;
     }
+    // Side i's frame coordinates, then all its cubic Hermite roots in one batched solve.
     for (std::size_t k = 0; k < count; ++k) {
-      const Dual du = Dual::u(u[k]), dv = Dual::vCoord(v[k]);
-      sides[i * count + k] = radial ? domain_.radialSideParameter(i, du, dv)
-                                    : domain_.hermiteSweepFromRoot(i, du, dv, roots[k]).s;
+      Dual fx, fy;
+      domain_.sideFrame(i, Dual::u(u[k]), Dual::vCoord(v[k]), fx, fy);
+      x[k] = fx.v, y[k] = fy.v;
     }
+    kernels::hermiteSweepRoots(count, frame, x.data(), y.data(), roots.data(), unused.data());
+    for (std::size_t k = 0; k < count; ++k)
+      sides[i * count + k] = domain_.hermiteSweepFromRoot(i, Dual::u(u[k]), Dual::vCoord(v[k]), roots[k]).s;
   }
   // Corner blends in product form (m = 2 for G¹, 3 for G²), as Patch::evaluate.
   for (std::size_t k = 0; k < count; ++k) {

@@ -217,9 +217,8 @@ std::vector<Vec3> evaluateFaceInteriors(const Surface &surface, const Tessellati
 }
 
 std::size_t estimateMeshVertices(const Surface &surface, int resolution) {
-  std::size_t count = surface.network().vertices().size() + surface.network().segments().size() * resolution;
-  for (int f = 0; f < surface.faceCount(); ++f) count += faceInteriorCount(surface.domainSides(f), resolution);
-  return count;
+  return surface.network().vertices().size() + surface.network().segments().size() * resolution +
+         faceInteriorPoints(surface, resolution);
 }
 
 namespace {
