@@ -90,14 +90,11 @@ Command addApproximateCommand(CLI::App &app) {
             options.fitRadius = o->fitRadius;
             options.threads = o->threads;
             const ApproximationResult result = approximateMesh(mesh, curves, options);
-            auto tessellateWithProgress = [&](const Surface &surface, const char *label) {
-              ProgressLine progress(label, progressWanted(o->quiet));
-              TessellationOptions t{o->resolution, o->threads};
-              t.progress = progress.callback();
-              return tessellate(surface, t);
-            };
-            writeMeshFile(tessellateWithProgress(result.g2, "tessellate G2"), o->output);
-            if (!o->g1Output.empty()) writeMeshFile(tessellateWithProgress(result.g1, "tessellate G1"), o->g1Output);
+            const bool show = progressWanted(o->quiet);
+            writeMeshFile(tessellateShowingProgress(result.g2, {o->resolution, o->threads}, "tessellate G2", show), o->output);
+            if (!o->g1Output.empty())
+              writeMeshFile(tessellateShowingProgress(result.g1, {o->resolution, o->threads}, "tessellate G1", show),
+                            o->g1Output);
 
             std::printf("mesh: %zu vertices, %zu triangles; network: %zu faces, %zu segments; curves within %.2e of "
                         "the mesh\n",

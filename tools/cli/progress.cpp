@@ -48,4 +48,13 @@ void ProgressLine::clear() {
   lastPercent_ = -1;
 }
 
+Mesh tessellateShowingProgress(const Surface &surface, TessellationOptions options, const std::string &label,
+                               bool show) {
+  ProgressLine progress(label, show);
+  options.progress = progress.callback();
+  Mesh mesh = tessellate(surface, options);
+  progress.clear();
+  return mesh;
+}
+
 } // namespace curvenet::cli

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "curvenet/progress.hpp"
+#include "curvenet/tessellate.hpp"
 
 namespace CLI {
 class App;
@@ -44,5 +45,9 @@ private:
   int lastPercent_ = -1;
   std::chrono::steady_clock::time_point lastWrite_{};
 };
+
+/// tessellate(surface, options) showing a progress line labelled `label` when
+/// `show` (options.progress is replaced); the line is cleared when it ends.
+Mesh tessellateShowingProgress(const Surface &surface, TessellationOptions options, const std::string &label, bool show);
 
 } // namespace curvenet::cli

@@ -30,11 +30,7 @@ RenderedPicture renderPicture(const Surface &surface, const render::RenderOption
                    "--resolution " + std::to_string(resolution) + " at " + std::to_string(options.width) + "x" +
                        std::to_string(options.height));
   RenderedPicture out;
-  {
-    ProgressLine progress("tessellate", showProgress);
-    t.progress = progress.callback();
-    out.mesh = tessellate(surface, t);
-  }
+  out.mesh = tessellateShowingProgress(surface, t, "tessellate", showProgress);
   std::vector<double> values;
   if (curvatureMode) {
     CurvatureOptions c;

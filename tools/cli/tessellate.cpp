@@ -39,11 +39,8 @@ Command addTessellateCommand(CLI::App &app) {
             warnAboutFolds(surface);
             refuseIfTooLarge(estimateMeshBytes(estimateMeshVertices(surface, o->resolution), true),
                              "--resolution " + std::to_string(o->resolution));
-            ProgressLine progress("tessellate", progressWanted(o->quiet));
-            TessellationOptions t{o->resolution, o->threads};
-            t.progress = progress.callback();
-            const Mesh mesh = tessellate(surface, t);
-            progress.clear();
+            const Mesh mesh = tessellateShowingProgress(surface, {o->resolution, o->threads}, "tessellate",
+                                                        progressWanted(o->quiet));
             writeMeshFile(mesh, o->output);
             if (!o->controlNets.empty()) writeControlNets(surface, o->controlNets);
             std::printf("%s: %zu vertices, %zu triangles (%s, resolution %d)\n", o->output.c_str(),
@@ -81,11 +78,7 @@ Command addDemoCommand(CLI::App &app) {
                           figures["continuity"]["max_position_gap"].get<double>(),
                           figures.contains("reference") ? figures["reference"]["max_deviation"].get<double>() : 0.0,
                           figures.contains("reference") ? figures["reference"]["mean_deviation"].get<double>() : 0.0);
-              ProgressLine progress("tessellate " + schemeName(scheme), showProgress);
-              TessellationOptions t{32, 0};
-              t.progress = progress.callback();
-              const Mesh mesh = tessellate(surface, t);
-              progress.clear();
+              const Mesh mesh = tessellateShowingProgress(surface, {32, 0}, "tessellate " + schemeName(scheme), showProgress);
               const std::string path = *out + "/" + defaultBuiltinName() + "-" + schemeName(scheme) + ".obj";
               writeMeshFile(mesh, path);
               report["meshes"][schemeName(scheme)] = {{"file", path},
