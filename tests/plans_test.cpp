@@ -61,6 +61,56 @@ TEST(EvaluationPlan, RotatedSideZeroDataIsEverySidesOwn) {
     }
 }
 
+TEST(EvaluationPlan, RangesCoverEverySampleOnceAndBatchedSidesMatchTheRotation) {
+  // ranges() partitions the samples, and ranges that rotate onto one another
+  // come together; sidesAndBlends (the batched reads, with a shortcut inside
+  // a triangle interior) equals side() and blend() on every range and on
+  // ranges straddling the spokes and triangle boundaries.
+  for (int n = 3; n <= 8; ++n)
+    for (const SurfaceOptions &o : schemes()) {
+      if (o.scheme == Scheme::CompositeRibbon) continue;
+      const EvaluationPlan plan(planKey(o, n, 11));
+      std::vector<int> covered(plan.size(), 0);
+      std::vector<std::pair<std::size_t, std::size_t>> ranges = plan.ranges(7);
+      for (const auto &[first, count] : ranges) {
+        ASSERT_GE(count, 1u);
+        ASSERT_LE(count, 7u);
+        for (std::size_t k = first; k < first + count; ++k) ++covered.at(k);
+      }
+      for (std::size_t k = 0; k < plan.size(); ++k) ASSERT_EQ(covered[k], 1) << label(o) << " n=" << n << " sample " << k;
+      // The first range of the interiors and the n − 1 after it: their
+      // samples' rotations stay within these n ranges.
+      const std::size_t spokesEnd = 1 + static_cast<std::size_t>(n) * 10;
+      std::size_t at = 0;
+      while (ranges[at].first < spokesEnd) ++at;
+      std::set<std::size_t> group;
+      for (int t = 0; t < n; ++t)
+        for (std::size_t k = ranges[at + t].first; k < ranges[at + t].first + ranges[at + t].second; ++k) group.insert(k);
+      for (std::size_t k : group)
+        for (int i = 0; i < n; ++i) ASSERT_TRUE(group.count(plan.rotated(i, k))) << "n=" << n << " k=" << k;
+      // Batched reads against the pointwise ones.
+      ranges.push_back({0, plan.size()});
+      ranges.push_back({spokesEnd - 3, 9});
+      ranges.push_back({plan.size() - 40, 40});
+      std::vector<double> data(6 * plan.size());
+      for (const auto &[first, count] : ranges)
+        for (int i = 0; i < n; ++i) {
+          double *const s[3] = {&data[0], &data[count], &data[2 * count]};
+          double *const b[3] = {&data[3 * count], &data[4 * count], &data[5 * count]};
+          plan.sidesAndBlends(i, first, count, s, b);
+          for (std::size_t k = 0; k < count; ++k) {
+            const Dual side = plan.side(i, first + k), blend = plan.blend(i, first + k);
+            ASSERT_EQ(s[0][k], side.v);
+            ASSERT_NEAR(s[1][k], side.du, 1e-14 * (1 + std::abs(side.du)));
+            ASSERT_NEAR(s[2][k], side.dv, 1e-14 * (1 + std::abs(side.dv)));
+            ASSERT_EQ(b[0][k], blend.v);
+            ASSERT_NEAR(b[1][k], blend.du, 1e-14 * (1 + std::abs(blend.du)));
+            ASSERT_NEAR(b[2][k], blend.dv, 1e-14 * (1 + std::abs(blend.dv)));
+          }
+        }
+    }
+}
+
 TEST(EvaluationPlan, CacheBuildsEachKeyOnceUnderConcurrentLookups) {
   clearEvaluationPlans();
   const PlanKey key{Scheme::GregoryG2, Sweepline::Hermite, 5, 40};

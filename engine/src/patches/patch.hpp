@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -115,10 +116,19 @@ private:
   /// The CR formula from the side parameters, distances and blends of all sides.
   DualVec3 compositeRibbonFrom(const Dual *s, const Dual *d, const Dual *blends) const;
   DualVec3 gregoryG2(Dual u, Dual v) const;
+  /// Fills side i's parameter and corner i's blend with their gradients
+  /// (value, ∂/∂u, ∂/∂v arrays) for samples [first, first + count).
+  using SideBlendSource = std::function<void(int i, std::size_t first, std::size_t count, double *const s[3],
+                                             double *const blend[3])>;
   /// The Gregory formula with derivatives from every side's parameter and
-  /// corner blend (sides[i·count + k], blends[i·count + k]): ribbons from
-  /// the tables or exactly, then the kernel.
+  /// corner blend: ribbons from the tables or exactly, then the kernel, in
+  /// blocks small enough for their arrays to stay in the fast caches.
+  void gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bool useTables, DualVec3 *out) const;
+  /// The same from arrays sides[i·count + k], blends[i·count + k].
   void gregoryJetsFrom(std::size_t count, const Dual *sides, const Dual *blends, bool useTables, DualVec3 *out) const;
+  /// One block of gregoryJetsFrom (internal types behind void pointers).
+  void gregoryJetsBlock(std::size_t count, const void *sideArrays, const void *blendArrays, bool useTables,
+                        void *scratch, DualVec3 *out) const;
   /// The Gregory formula's positions from every side's parameter and
   /// corner blend values (arrays of `count`): tables, then the kernel.
   void gregoryPositionsFrom(std::size_t count, const double *const *side, const double *const *blend,

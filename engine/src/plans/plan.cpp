@@ -154,6 +154,62 @@ EvaluationPlan::EvaluationPlan(const PlanKey &key) : key_(key) {
   }
 }
 
+void EvaluationPlan::sidesAndBlends(int i, std::size_t first, std::size_t count, double *const s[3],
+                                    double *const blend[3]) const {
+  // Locals throughout: the output arrays could alias the plan's members as
+  // far as the compiler knows, which would reload every member per sample.
+  const double c = cos_[i], t = sin_[i];
+  const std::uint32_t *from = rotation_.data() + static_cast<std::size_t>(i) * size() + first;
+  const Dual *sides = s_.data(), *blends = b_.data();
+  double *sv = s[0], *su = s[1], *sw = s[2], *bv = blend[0], *bu = blend[1], *bw = blend[2];
+  // Within one centre–side triangle interior the rotation is a shift by
+  // whole triangles (the constructor's layout): plain loads of consecutive
+  // samples, which the compiler vectorizes, and no reads of rotation_.
+  const int n = key_.sides, r = key_.resolution;
+  const std::size_t interiorBase = 1 + static_cast<std::size_t>(n) * (r - 1);
+  const std::size_t perTriangle = static_cast<std::size_t>((r - 1) * (r - 2) / 2);
+  const std::size_t triangle = first >= interiorBase ? (first - interiorBase) / perTriangle : 0;
+  if (first >= interiorBase && first + count <= interiorBase + (triangle + 1) * perTriangle) {
+    const std::size_t local = first - interiorBase - triangle * perTriangle;
+    const std::size_t rotated = interiorBase + ((triangle + n - i) % n) * perTriangle + local;
+    const Dual *x = sides + (perSide_ ? static_cast<std::size_t>(i) * size() + first : rotated);
+    const Dual *y = blends + rotated;
+    const double cs = perSide_ ? 1.0 : c, ts = perSide_ ? 0.0 : t;
+    for (std::size_t k = 0; k < count; ++k)
+      sv[k] = x[k].v, su[k] = cs * x[k].du - ts * x[k].dv, sw[k] = ts * x[k].du + cs * x[k].dv;
+    for (std::size_t k = 0; k < count; ++k)
+      bv[k] = y[k].v, bu[k] = c * y[k].du - t * y[k].dv, bw[k] = t * y[k].du + c * y[k].dv;
+    return;
+  }
+  if (perSide_) {
+    const Dual *own = sides + static_cast<std::size_t>(i) * size() + first;
+    for (std::size_t k = 0; k < count; ++k) sv[k] = own[k].v, su[k] = own[k].du, sw[k] = own[k].dv;
+  } else {
+    for (std::size_t k = 0; k < count; ++k) {
+      const Dual x = sides[from[k]];
+      sv[k] = x.v, su[k] = c * x.du - t * x.dv, sw[k] = t * x.du + c * x.dv;
+    }
+  }
+  for (std::size_t k = 0; k < count; ++k) {
+    const Dual x = blends[from[k]];
+    bv[k] = x.v, bu[k] = c * x.du - t * x.dv, bw[k] = t * x.du + c * x.dv;
+  }
+}
+
+std::vector<std::pair<std::size_t, std::size_t>> EvaluationPlan::ranges(std::size_t maxCount) const {
+  // The layout of the constructor: centre and spokes, then n equal triangle
+  // interiors that the rotations permute as wholes, sample for sample.
+  const int n = key_.sides, r = key_.resolution;
+  const std::size_t interiorBase = 1 + static_cast<std::size_t>(n) * (r - 1);
+  const std::size_t perTriangle = static_cast<std::size_t>((r - 1) * (r - 2) / 2);
+  std::vector<std::pair<std::size_t, std::size_t>> out;
+  for (std::size_t k = 0; k < interiorBase; k += maxCount) out.push_back({k, std::min(maxCount, interiorBase - k)});
+  for (std::size_t q = 0; q < perTriangle; q += maxCount)
+    for (int t = 0; t < n; ++t)
+      out.push_back({interiorBase + t * perTriangle + q, std::min(maxCount, perTriangle - q)});
+  return out;
+}
+
 std::size_t EvaluationPlan::memory() const {
   return samples_.size() * sizeof(Vec2) + (s_.size() + d_.size() + b_.size()) * sizeof(Dual) +
          rotation_.size() * sizeof(std::uint32_t) + (sideValues_.size() + blendValues_.size()) * sizeof(double);

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "curvenet/surface.hpp"
@@ -63,6 +64,16 @@ public:
   /// Gregory: corner i's normalized blend B_{i,i−1}; composite-ribbon: the
   /// normalized corner product D_{i,i−1} / Σ_j D_{j,j−1}.
   Dual blend(int i, std::size_t k) const { return turn(i, b_[rotated(i, k)]); }
+  /// side(i, k) and blend(i, k) for k in [first, first + count) as arrays:
+  /// value, ∂/∂u, ∂/∂v of each into s[0 .. 2][j], blend[0 .. 2][j], j = k − first.
+  void sidesAndBlends(int i, std::size_t first, std::size_t count, double *const s[3], double *const blend[3]) const;
+
+  /// Consecutive sample ranges [first, first + count) of at most
+  /// `maxCount` covering all samples, in an order that puts ranges next to
+  /// one another when the rotations map them onto one another (the same rows
+  /// of each centre–side triangle): evaluated in this order, the side data
+  /// read through rotated() are still in the cache from the previous range.
+  std::vector<std::pair<std::size_t, std::size_t>> ranges(std::size_t maxCount) const;
 
   /// Bytes held.
   std::size_t memory() const;

@@ -6,6 +6,7 @@
 // kernels::gregoryJets with exact first derivatives.
 #include <algorithm>
 #include <array>
+#include <span>
 #include <vector>
 
 #include "curvenet/error.hpp"
@@ -289,56 +290,92 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
     return;
   }
 
-  thread_local std::vector<Dual> sides, blends;
-  sides.resize(static_cast<std::size_t>(n) * count), blends.resize(static_cast<std::size_t>(n) * count);
-  for (int i = 0; i < n; ++i)
-    for (std::size_t k = 0; k < count; ++k)
-      sides[i * count + k] = plan.side(i, first + k), blends[i * count + k] = plan.blend(i, first + k);
-  gregoryJetsFrom(count, sides.data(), blends.data(), plan.key().resolution >= kTableResolution, out);
+  gregoryJetsFrom(
+      count,
+      [&](int i, std::size_t block, std::size_t m, double *const s[3], double *const b[3]) {
+        plan.sidesAndBlends(i, first + block, m, s, b);
+      },
+      plan.key().resolution >= kTableResolution, out);
 }
 
-void Patch::gregoryJetsFrom(std::size_t count, const Dual *sides, const Dual *blends, bool useTables,
-                            DualVec3 *out) const {
+void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bool useTables, DualVec3 *out) const {
+  // Blocks of 64 samples: the ribbons' values and slopes (up to 18 arrays
+  // per side) then stay near the kernel (the L1 and L2 caches) between the
+  // table pass and the kernel pass; whole tiles would spill them to L3.
+  constexpr std::size_t kBlock = 64;
   const int n = domain_.sides();
   const bool g2 = options_.scheme == Scheme::GregoryG2;
   thread_local Scratch scratch;
   const std::size_t jetArrays = g2 ? 18 : 12;
-  scratch.reset(count, static_cast<std::size_t>(n) * (6 + jetArrays) + 9);
-  std::array<DualArray, kMaxSides> side, blend;
+  for (std::size_t first = 0; first < count; first += kBlock) {
+    const std::size_t m = std::min(kBlock, count - first);
+    scratch.reset(m, static_cast<std::size_t>(n) * (6 + jetArrays) + 10);
+    std::array<DualArray, kMaxSides> side, blend;
+    for (int i = 0; i < n; ++i) {
+      side[i].take(scratch), blend[i].take(scratch);
+      double *const s[3] = {side[i].v, side[i].du, side[i].dv}, *const b[3] = {blend[i].v, blend[i].du, blend[i].dv};
+      source(i, first, m, s, b);
+    }
+    gregoryJetsBlock(m, side.data(), blend.data(), useTables, &scratch, out + first);
+  }
+}
+
+void Patch::gregoryJetsFrom(std::size_t count, const Dual *sides, const Dual *blends, bool useTables,
+                            DualVec3 *out) const {
+  gregoryJetsFrom(
+      count,
+      [&](int i, std::size_t first, std::size_t m, double *const s[3], double *const b[3]) {
+        for (std::size_t k = 0; k < m; ++k) {
+          const Dual x = sides[i * count + first + k], y = blends[i * count + first + k];
+          s[0][k] = x.v, s[1][k] = x.du, s[2][k] = x.dv, b[0][k] = y.v, b[1][k] = y.du, b[2][k] = y.dv;
+        }
+      },
+      useTables, out);
+}
+
+void Patch::gregoryJetsBlock(std::size_t count, const void *sideArrays, const void *blendArrays, bool useTables,
+                             void *scratchSpace, DualVec3 *out) const {
+  const int n = domain_.sides();
+  const bool g2 = options_.scheme == Scheme::GregoryG2;
+  Scratch &scratch = *static_cast<Scratch *>(scratchSpace);
+  const auto *side = static_cast<const DualArray *>(sideArrays);
+  const auto *blend = static_cast<const DualArray *>(blendArrays);
   std::array<JetArrays, kMaxSides> jets;
   for (int i = 0; i < n; ++i) {
-    side[i].take(scratch), blend[i].take(scratch);
     jets[i].P.take(scratch), jets[i].dP.take(scratch), jets[i].T.take(scratch), jets[i].dT.take(scratch);
     if (g2) jets[i].C.take(scratch), jets[i].dC.take(scratch);
   }
   double *result[9];
   for (double *&p : result) p = scratch.take();
+  double *at = scratch.take();
 
   // Geometry: each side's ribbon at the plan's side parameters, one batch per
   // side — from the tables at high resolutions, else exactly (the plan's
   // samples run along rows, so consecutive side parameters mostly share a
   // knot span).
   const PatchTables *tables = useTables ? &this->tables() : nullptr;
-  thread_local std::vector<double> at;
   thread_local std::vector<RibbonJet> linearJets;
   thread_local std::vector<ParabolicJet> parabolicJets;
-  at.resize(count);
+  std::span<const double> parameters;
   for (int i = 0; i < n; ++i) {
-    for (std::size_t k = 0; k < count; ++k) {
-      const Dual s = sides[i * count + k];
-      side[i].set(k, s);
-      blend[i].set(k, blends[i * count + k]);
-      at[k] = ribbons_[i].snap(std::clamp(s.v, 0.0, 1.0));
+    // As in gregoryPositionsFrom: the side parameters are table parameters
+    // as they are, except on sides of several segments (and for the exact
+    // ribbons), where a parameter at a break takes its left piece.
+    if (tables && ribbons_[i].pieces().size() == 1) {
+      parameters = {side[i].v, count};
+    } else {
+      for (std::size_t k = 0; k < count; ++k) at[k] = ribbons_[i].snap(std::clamp(side[i].v[k], 0.0, 1.0));
+      parameters = {at, count};
     }
     if (tables) {
       double *values[9] = {jets[i].P.c[0], jets[i].P.c[1], jets[i].P.c[2], jets[i].T.c[0], jets[i].T.c[1],
                            jets[i].T.c[2], jets[i].C.c[0], jets[i].C.c[1], jets[i].C.c[2]};
       double *slopes[9] = {jets[i].dP.c[0], jets[i].dP.c[1], jets[i].dP.c[2], jets[i].dT.c[0], jets[i].dT.c[1],
                            jets[i].dT.c[2], jets[i].dC.c[0], jets[i].dC.c[1], jets[i].dC.c[2]};
-      tables->sides[i].evaluate(count, at.data(), values, slopes);
+      tables->sides[i].evaluate(count, parameters.data(), values, slopes);
     } else if (g2) {
       parabolicJets.resize(count);
-      parabolic_[i].at(at, parabolicJets);
+      parabolic_[i].at(parameters, parabolicJets);
       for (std::size_t k = 0; k < count; ++k) {
         const ParabolicJet &j = parabolicJets[k];
         jets[i].P.set(k, j.P), jets[i].dP.set(k, j.dP), jets[i].T.set(k, j.T), jets[i].dT.set(k, j.dT);
@@ -346,7 +383,7 @@ void Patch::gregoryJetsFrom(std::size_t count, const Dual *sides, const Dual *bl
       }
     } else {
       linearJets.resize(count);
-      ribbons_[i].at(at, linearJets);
+      ribbons_[i].at(parameters, linearJets);
       for (std::size_t k = 0; k < count; ++k) {
         const RibbonJet &j = linearJets[k];
         jets[i].P.set(k, j.P), jets[i].dP.set(k, j.dP), jets[i].T.set(k, j.T), jets[i].dT.set(k, j.dT);

@@ -148,7 +148,7 @@ std::vector<Tile> planTiles(const Surface &surface, int resolution,
     if (!wanted(f)) continue;
     plans[f] = evaluationPlan(planKey(surface.options(), surface.domainSides(f), resolution));
     const std::size_t size = plans[f]->size();
-    for (std::size_t k = 0; k < size; k += kTileSamples) tiles.push_back({f, k, std::min(kTileSamples, size - k)});
+    for (const auto &[first, count] : plans[f]->ranges(kTileSamples)) tiles.push_back({f, first, count});
     total += size;
   }
   return tiles;
