@@ -102,6 +102,7 @@ Patch::Patch(std::vector<LinearRibbon> ribbons, const SurfaceOptions &options, s
     options_.sweepline = options_.scheme == Scheme::GregoryG2 ? Sweepline::Hermite : Sweepline::Radial;
   CURVENET_CHECK(options_.scheme != Scheme::GregoryG2 || parabolic_.size() == ribbons_.size(),
                  "gregory-g2 needs one parabolic ribbon per side");
+  for (const LinearRibbon &ribbon : ribbons_) ribbonStarts_.push_back(ribbon.at(0.0)), ribbonEnds_.push_back(ribbon.at(1.0));
 }
 
 DualVec3 Patch::evaluate(double u, double v) const {
@@ -240,14 +241,23 @@ DualVec3 Patch::compositeRibbon(Dual u, Dual v) const {
   return compositeRibbonFrom(s.data(), d.data(), blend.data());
 }
 
-DualVec3 Patch::compositeRibbonFrom(const Dual *s, const Dual *d, const Dual *blends) const {
+DualVec3 Patch::compositeRibbonFrom(const Dual *s, const Dual *d, const Dual *blends, const PatchTables *tables) const {
   const int n = domain_.sides();
   auto gamma = [](Dual x) { return x / (x * 2.0 + 1.0); };
   auto hermite0 = [](Dual x) { return x * x * (x * 2.0 - 3.0) + 1.0; }; // α0 = 2x³ − 3x² + 1
   // Ribbon with the γ reparameterization: R_i(s, d) = P_i(s) + γ(d) T_i(s).
   auto ribbon = [&](int i, Dual side, Dual dist) {
     const LinearRibbon &r = ribbons_[domain_.wrap(i)];
-    const RibbonJet j = r.at(r.snap(std::clamp(side.v, 0.0, 1.0)));
+    const double at = r.snap(std::clamp(side.v, 0.0, 1.0));
+    RibbonJet j;
+    if (tables) {
+      double values[6], slopes[6];
+      tables->sides[domain_.wrap(i)].evaluate(at, values, slopes);
+      j = {{values[0], values[1], values[2]}, {slopes[0], slopes[1], slopes[2]},
+           {values[3], values[4], values[5]}, {slopes[3], slopes[4], slopes[5]}};
+    } else {
+      j = r.at(at);
+    }
     return DualVec3::along(j.P, j.dP, side) + gamma(dist) * DualVec3::along(j.T, j.dT, side);
   };
   DualVec3 result{};
@@ -261,8 +271,8 @@ DualVec3 Patch::compositeRibbonFrom(const Dual *s, const Dual *d, const Dual *bl
     const DualVec3 centre = ribbon(i, si, di);
     const DualVec3 leftRibbon = ribbon(prev, one - di, si);  // R_{i−1}(1 − d, s)
     const DualVec3 rightRibbon = ribbon(next, di, one - si); // R_{i+1}(d, 1 − s)
-    const RibbonJet iStart = ribbons_[i].at(0.0), iEnd = ribbons_[i].at(1.0);
-    const RibbonJet prevEnd = ribbons_[prev].at(1.0), nextStart = ribbons_[next].at(0.0);
+    const RibbonJet &iStart = ribbonStarts_[i], &iEnd = ribbonEnds_[i];
+    const RibbonJet &prevEnd = ribbonEnds_[prev], &nextStart = ribbonStarts_[next];
     // Left corner, local (s, d): match R^l across d = 0 and R_i across s = 0.
     const CornerData leftCorner{iStart.P,  prevEnd.T,  -prevEnd.dP, -prevEnd.dT,
                                 iStart.dP, iStart.T,   iStart.dT};

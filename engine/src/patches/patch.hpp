@@ -114,7 +114,9 @@ private:
   DualVec3 gregory(Dual u, Dual v) const;
   DualVec3 compositeRibbon(Dual u, Dual v) const;
   /// The CR formula from the side parameters, distances and blends of all sides.
-  DualVec3 compositeRibbonFrom(const Dual *s, const Dual *d, const Dual *blends) const;
+  /// tables: the ribbons from these (the plan path) instead of exactly.
+  DualVec3 compositeRibbonFrom(const Dual *s, const Dual *d, const Dual *blends,
+                               const PatchTables *tables = nullptr) const;
   DualVec3 gregoryG2(Dual u, Dual v) const;
   /// Fills side i's parameter and corner i's blend with their gradients
   /// (value, ∂/∂u, ∂/∂v arrays) for samples [first, first + count).
@@ -141,6 +143,8 @@ private:
   RegularDomain domain_;
   std::vector<LinearRibbon> ribbons_;
   std::vector<ParabolicRibbon> parabolic_;
+  /// Each ribbon's jet at s = 0 and s = 1 (the corners' data), computed once.
+  std::vector<RibbonJet> ribbonStarts_, ribbonEnds_;
   SurfaceOptions options_;
 };
 

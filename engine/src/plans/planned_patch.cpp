@@ -93,8 +93,9 @@ std::size_t PatchTables::memory() const {
 }
 
 const PatchTables &Patch::tables() const {
-  CURVENET_CHECK(options_.scheme == Scheme::GregoryG1 || options_.scheme == Scheme::GregoryG2,
-                 "ribbon tables are built for the Gregory schemes");
+  CURVENET_CHECK(options_.scheme == Scheme::GregoryG1 || options_.scheme == Scheme::GregoryG2 ||
+                     options_.scheme == Scheme::CompositeRibbon,
+                 "ribbon tables are built for the transfinite schemes");
   std::call_once(tables_->once, [this] {
     PatchTables &t = tables_->tables;
     const bool g2 = options_.scheme == Scheme::GregoryG2;
@@ -127,6 +128,7 @@ const PatchTables &Patch::tables() const {
         };
         t.sides.emplace_back(6, ribbons_[i].breakpoints(), exact);
       }
+      if (options_.scheme == Scheme::CompositeRibbon) continue; // its corners: ribbonStarts_, ribbonEnds_
       t.corners.push_back(cornerVectors(i));
       if (g2) t.cornerTerms.push_back(kernels::gregoryCornerTerms(t.corners.back()));
     }
@@ -280,12 +282,13 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
   CURVENET_CHECK(plan.key().sides == n && plan.key().scheme == options_.scheme,
                  "plan for " + std::to_string(plan.key().sides) + " sides used on a patch with " + std::to_string(n));
   if (options_.scheme == Scheme::CompositeRibbon) {
+    const PatchTables *tables = plan.key().resolution >= kTableResolution ? &this->tables() : nullptr;
     std::array<Dual, kMaxSides> s, d, q, blend;
     for (std::size_t k = 0; k < count; ++k) {
       for (int i = 0; i < n; ++i) s[i] = plan.side(i, first + k), d[i] = plan.distance(i, first + k),
                                   q[i] = plan.blend(i, first + k);
       for (int i = 0; i < n; ++i) blend[i] = q[i] + q[domain_.wrap(i + 1)];
-      out[k] = compositeRibbonFrom(s.data(), d.data(), blend.data());
+      out[k] = compositeRibbonFrom(s.data(), d.data(), blend.data(), tables);
     }
     return;
   }

@@ -33,10 +33,11 @@ struct Interval {
 };
 
 /// Degree-5 polynomial in local t with its t-derivative.
-inline void polynomial(const double *c, int dims, double t, double *value, double *dt) {
+/// Rows of `stride` doubles (t⁰ … t⁵), the first `dims` of each used.
+inline void polynomial(const double *c, int stride, int dims, double t, double *value, double *dt) {
   for (int d = 0; d < dims; ++d) {
-    const double c0 = c[d], c1 = c[dims + d], c2 = c[2 * dims + d], c3 = c[3 * dims + d], c4 = c[4 * dims + d],
-                 c5 = c[5 * dims + d];
+    const double c0 = c[d], c1 = c[stride + d], c2 = c[2 * stride + d], c3 = c[3 * stride + d],
+                 c4 = c[4 * stride + d], c5 = c[5 * stride + d];
     value[d] = ((((c5 * t + c4) * t + c3) * t + c2) * t + c1) * t + c0;
     if (dt) dt[d] = (((5 * c5 * t + 4 * c4) * t + 3 * c3) * t + 2 * c2) * t + c1;
   }
@@ -107,9 +108,9 @@ RibbonTable::RibbonTable(int dims, std::vector<double> breaks, const Exact &exac
       }
       std::array<double, kMaxDims> value{}, slope{};
       double valueError = 0, slopeError = 0;
-      polynomial(c.data(), dims, kValueCheck, value.data(), nullptr);
+      polynomial(c.data(), dims, dims, kValueCheck, value.data(), nullptr);
       for (std::size_t d = 0; d < D; ++d) valueError = std::max(valueError, std::abs(value[d] - at(v, 10, d)));
-      polynomial(c.data(), dims, kSlopeCheck, value.data(), slope.data());
+      polynomial(c.data(), dims, dims, kSlopeCheck, value.data(), slope.data());
       for (std::size_t d = 0; d < D; ++d) {
         valueError = std::max(valueError, std::abs(value[d] - at(v, 11, d)));
         slopeError = std::max(slopeError, std::abs(slope[d] / h - at(sl, 11, d)));
@@ -173,11 +174,8 @@ RibbonTable::RibbonTable(int dims, std::vector<double> breaks, const Exact &exac
 void RibbonTable::evaluate(double s, double *values, double *slopes) const {
   const std::uint32_t i = interval(s);
   const double t = (s - starts_[i]) * inverseWidths_[i];
-  std::array<double, 6 * kMaxDims> c{};
-  const double *row = coefficients_.data() + static_cast<std::size_t>(i) * 6 * paddedDims_;
-  for (int r = 0; r < 6; ++r)
-    for (int d = 0; d < dims_; ++d) c[r * dims_ + d] = row[r * paddedDims_ + d];
-  polynomial(c.data(), dims_, t, values, slopes);
+  polynomial(coefficients_.data() + static_cast<std::size_t>(i) * 6 * paddedDims_, paddedDims_, dims_, t, values,
+             slopes);
   if (slopes)
     for (int d = 0; d < dims_; ++d) slopes[d] *= inverseWidths_[i];
 }
