@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <type_traits>
 
 #include "curvenet/error.hpp"
 
@@ -24,6 +25,43 @@ DualVec3 rationalTerm(const Vec3 &a, const Vec3 &b, Dual x, Dual y) {
   const Dual sum = x + y;
   if (sum.v == 0) return DualVec3::constant((a + b) * 0.5);
   return (x / sum) * a + (y / sum) * b;
+}
+
+/// The number types the Composite Ribbon formula runs on: Dual (value and
+/// gradient, for tessellation) and double (positions alone, three times
+/// cheaper). The formula is written once over these.
+template <class T> struct Numbers;
+template <> struct Numbers<Dual> {
+  using Point = DualVec3;
+  static Point along(const Vec3 &c, const Vec3 &dc, Dual x) { return DualVec3::along(c, dc, x); }
+  static Point constant(const Vec3 &c) { return DualVec3::constant(c); }
+  static double value(Dual x) { return x.v; }
+  static bool isZero(Dual x) { return x.isZero(); }
+};
+template <> struct Numbers<double> {
+  using Point = Vec3;
+  static Point along(const Vec3 &c, const Vec3 &, double) { return c; }
+  static Point constant(const Vec3 &c) { return c; }
+  static double value(double x) { return x; }
+  static bool isZero(double x) { return x == 0; }
+};
+
+/// rationalTerm over either number type.
+template <class T> typename Numbers<T>::Point rationalTermOf(const Vec3 &a, const Vec3 &b, T x, T y) {
+  const T sum = x + y;
+  if (Numbers<T>::value(sum) == 0) return Numbers<T>::constant((a + b) * 0.5);
+  return (x / sum) * a + (y / sum) * b;
+}
+
+/// gregoryCorrection over either number type.
+template <class T>
+typename Numbers<T>::Point gregoryCorrectionOf(const CornerData &c, T s, T t, T gs, T gt) {
+  const T s2 = s * s, t2 = t * t;
+  typename Numbers<T>::Point q = Numbers<T>::constant(c.a00);
+  q += gs * rationalTermOf(c.a10, c.b10, s, t2);
+  q += gt * rationalTermOf(c.a01, c.b01, s2, t);
+  q += (gs * gt) * rationalTermOf(c.a11, c.b11, s, t);
+  return q;
 }
 
 /// Parabolic ribbon R(s, d) = P(s) + d T(s) + ½ d² C(s) at Dual parameters.
@@ -86,12 +124,7 @@ DualVec3 gregoryCorrection2(const CornerData2 &c, Dual s, Dual t) {
 }
 
 DualVec3 gregoryCorrection(const CornerData &c, Dual s, Dual t, Dual gs, Dual gt) {
-  const Dual s2 = s * s, t2 = t * t;
-  DualVec3 q = DualVec3::constant(c.a00);
-  q += gs * rationalTerm(c.a10, c.b10, s, t2);
-  q += gt * rationalTerm(c.a01, c.b01, s2, t);
-  q += (gs * gt) * rationalTerm(c.a11, c.b11, s, t);
-  return q;
+  return gregoryCorrectionOf(c, s, t, gs, gt);
 }
 
 Patch::Patch(std::vector<LinearRibbon> ribbons, const SurfaceOptions &options, std::vector<ParabolicRibbon> parabolic)
@@ -241,36 +274,40 @@ DualVec3 Patch::compositeRibbon(Dual u, Dual v) const {
   return compositeRibbonFrom(s.data(), d.data(), blend.data());
 }
 
-DualVec3 Patch::compositeRibbonFrom(const Dual *s, const Dual *d, const Dual *blends, const PatchTables *tables) const {
+template <class T>
+auto Patch::compositeRibbonWith(const T *s, const T *d, const T *blends, const PatchTables *tables) const {
+  using N = Numbers<T>;
+  using Point = typename N::Point;
   const int n = domain_.sides();
-  auto gamma = [](Dual x) { return x / (x * 2.0 + 1.0); };
-  auto hermite0 = [](Dual x) { return x * x * (x * 2.0 - 3.0) + 1.0; }; // α0 = 2x³ − 3x² + 1
+  auto gamma = [](T x) { return x / (x * 2.0 + 1.0); };
+  auto hermite0 = [](T x) { return x * x * (x * 2.0 - 3.0) + 1.0; }; // α0 = 2x³ − 3x² + 1
   // Ribbon with the γ reparameterization: R_i(s, d) = P_i(s) + γ(d) T_i(s).
-  auto ribbon = [&](int i, Dual side, Dual dist) {
+  auto ribbon = [&](int i, T side, T dist) {
     const LinearRibbon &r = ribbons_[domain_.wrap(i)];
-    const double at = r.snap(std::clamp(side.v, 0.0, 1.0));
+    const double at = r.snap(std::clamp(N::value(side), 0.0, 1.0));
     RibbonJet j;
     if (tables) {
-      double values[6], slopes[6];
-      tables->sides[domain_.wrap(i)].evaluate(at, values, slopes);
-      j = {{values[0], values[1], values[2]}, {slopes[0], slopes[1], slopes[2]},
-           {values[3], values[4], values[5]}, {slopes[3], slopes[4], slopes[5]}};
+      constexpr bool slopes = !std::is_same_v<T, double>;
+      double values[6], derivatives[6] = {};
+      tables->sides[domain_.wrap(i)].evaluate(at, values, slopes ? derivatives : nullptr);
+      j = {{values[0], values[1], values[2]}, {derivatives[0], derivatives[1], derivatives[2]},
+           {values[3], values[4], values[5]}, {derivatives[3], derivatives[4], derivatives[5]}};
     } else {
       j = r.at(at);
     }
-    return DualVec3::along(j.P, j.dP, side) + gamma(dist) * DualVec3::along(j.T, j.dT, side);
+    return N::along(j.P, j.dP, side) + gamma(dist) * N::along(j.T, j.dT, side);
   };
-  DualVec3 result{};
+  Point result{};
   for (int i = 0; i < n; ++i) {
-    const Dual blend = blends[i];
-    if (blend.isZero()) continue;
+    const T blend = blends[i];
+    if (N::isZero(blend)) continue;
     const int prev = domain_.wrap(i - 1), next = domain_.wrap(i + 1);
-    const Dual si = s[i], di = d[i], one = 1.0;
+    const T si = s[i], di = d[i], one = 1.0;
     // Curved ribbon C_i (a Coons patch with three sides given):
     // C = R^l α0(s) + R α0(d) + R^r α1(s) − [Q^l α0(s) α0(d) + Q^r α1(s) α0(d)].
-    const DualVec3 centre = ribbon(i, si, di);
-    const DualVec3 leftRibbon = ribbon(prev, one - di, si);  // R_{i−1}(1 − d, s)
-    const DualVec3 rightRibbon = ribbon(next, di, one - si); // R_{i+1}(d, 1 − s)
+    const Point centre = ribbon(i, si, di);
+    const Point leftRibbon = ribbon(prev, one - di, si);  // R_{i−1}(1 − d, s)
+    const Point rightRibbon = ribbon(next, di, one - si); // R_{i+1}(d, 1 − s)
     const RibbonJet &iStart = ribbonStarts_[i], &iEnd = ribbonEnds_[i];
     const RibbonJet &prevEnd = ribbonEnds_[prev], &nextStart = ribbonStarts_[next];
     // Left corner, local (s, d): match R^l across d = 0 and R_i across s = 0.
@@ -279,15 +316,24 @@ DualVec3 Patch::compositeRibbonFrom(const Dual *s, const Dual *d, const Dual *bl
     // Right corner, local (σ = 1 − s, d): match R^r across d = 0 and R_i across σ = 0.
     const CornerData rightCorner{nextStart.P, nextStart.T, nextStart.dP, nextStart.dT,
                                  -iEnd.dP,    iEnd.T,      -iEnd.dT};
-    const Dual sigma = one - si;
-    const DualVec3 leftCorrection = gregoryCorrection(leftCorner, si, di, gamma(si), gamma(di));
-    const DualVec3 rightCorrection = gregoryCorrection(rightCorner, sigma, di, gamma(sigma), gamma(di));
-    const Dual a0s = hermite0(si), a1s = one - a0s, a0d = hermite0(di);
-    const DualVec3 curved = a0s * leftRibbon + a0d * centre + a1s * rightRibbon -
-                            (a0s * a0d) * leftCorrection - (a1s * a0d) * rightCorrection;
+    const T sigma = one - si;
+    const Point leftCorrection = gregoryCorrectionOf(leftCorner, si, di, gamma(si), gamma(di));
+    const Point rightCorrection = gregoryCorrectionOf(rightCorner, sigma, di, gamma(sigma), gamma(di));
+    const T a0s = hermite0(si), a1s = one - a0s, a0d = hermite0(di);
+    const Point curved = a0s * leftRibbon + a0d * centre + a1s * rightRibbon -
+                         (a0s * a0d) * leftCorrection - (a1s * a0d) * rightCorrection;
     result += blend * curved;
   }
-  return Dual(0.5) * result;
+  return T(0.5) * result;
+}
+
+DualVec3 Patch::compositeRibbonFrom(const Dual *s, const Dual *d, const Dual *blends, const PatchTables *tables) const {
+  return compositeRibbonWith(s, d, blends, tables);
+}
+
+Vec3 Patch::compositeRibbonPoint(const double *s, const double *d, const double *blends,
+                                 const PatchTables *tables) const {
+  return compositeRibbonWith(s, d, blends, tables);
 }
 
 } // namespace v1

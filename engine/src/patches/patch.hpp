@@ -117,6 +117,10 @@ private:
   /// tables: the ribbons from these (the plan path) instead of exactly.
   DualVec3 compositeRibbonFrom(const Dual *s, const Dual *d, const Dual *blends,
                                const PatchTables *tables = nullptr) const;
+  /// The same formula's point alone from values (no gradients).
+  Vec3 compositeRibbonPoint(const double *s, const double *d, const double *blends, const PatchTables *tables) const;
+  /// Both of the above, over Dual or double.
+  template <class T> auto compositeRibbonWith(const T *s, const T *d, const T *blends, const PatchTables *tables) const;
   DualVec3 gregoryG2(Dual u, Dual v) const;
   /// Fills side i's parameter and corner i's blend with their gradients
   /// (value, ∂/∂u, ∂/∂v arrays) for samples [first, first + count).

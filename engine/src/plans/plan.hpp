@@ -55,6 +55,7 @@ public:
     return perSide_ ? s_[static_cast<std::size_t>(i) * size() + k].v : s_[rotated(i, k)].v;
   }
   double blendValue(int i, std::size_t k) const { return b_[rotated(i, k)].v; }
+  double distanceValue(int i, std::size_t k) const { return d_[rotated(i, k)].v; }
   /// Gregory schemes: side i's parameter values at every sample, and corner
   /// i's blend values (sideValue, blendValue stored contiguously).
   const double *sideValues(int i) const { return sideValues_.data() + static_cast<std::size_t>(i) * size(); }

@@ -142,10 +142,15 @@ void Patch::evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t fir
   CURVENET_CHECK(plan.key().sides == n && plan.key().scheme == options_.scheme,
                  "plan for " + std::to_string(plan.key().sides) + " sides used on a patch with " + std::to_string(n));
   if (options_.scheme == Scheme::CompositeRibbon) {
-    thread_local std::vector<DualVec3> values;
-    values.resize(count);
-    evaluatePlanned(plan, first, count, values.data());
-    for (std::size_t k = 0; k < count; ++k) out.set(k, values[k].v);
+    // The CR formula on values alone (no gradients), per sample.
+    const PatchTables *tables = plan.key().resolution >= kTableResolution ? &this->tables() : nullptr;
+    std::array<double, kMaxSides> s, d, q, blend;
+    for (std::size_t k = 0; k < count; ++k) {
+      for (int i = 0; i < n; ++i) s[i] = plan.sideValue(i, first + k), d[i] = plan.distanceValue(i, first + k),
+                                  q[i] = plan.blendValue(i, first + k);
+      for (int i = 0; i < n; ++i) blend[i] = q[i] + q[domain_.wrap(i + 1)];
+      out.set(k, compositeRibbonPoint(s.data(), d.data(), blend.data(), tables));
+    }
     return;
   }
   std::array<const double *, kMaxSides> side, blend;
