@@ -336,5 +336,65 @@ Vec3 Patch::compositeRibbonPoint(const double *s, const double *d, const double 
   return compositeRibbonWith(s, d, blends, tables);
 }
 
+void Patch::compositeRibbonPositions(std::size_t count, const double *const *s, const double *const *d,
+                                     const double *const *blends, const PositionSink &out) const {
+  // Blocks whose ribbon arrays (18 per side) stay in the fast caches.
+  constexpr std::size_t kBlock = 64;
+  const int n = domain_.sides();
+  const PatchTables &t = tables();
+  thread_local std::vector<double> scratch;
+  scratch.resize(static_cast<std::size_t>(n) * 21 * kBlock);
+  auto gamma = [](double x) { return x / (x * 2.0 + 1.0); };
+  auto hermite0 = [](double x) { return x * x * (x * 2.0 - 3.0) + 1.0; };
+  std::array<Vec3, kBlock> sum;
+  for (std::size_t first = 0; first < count; first += kBlock) {
+    const std::size_t m = std::min(kBlock, count - first);
+    // Per side i, three ribbons as in compositeRibbonWith: R_i at s_i, R_{i−1}
+    // at 1 − d_i, R_{i+1} at d_i, each through the table kernel.
+    auto array = [&](int i, int j) { return scratch.data() + (static_cast<std::size_t>(i) * 21 + j) * kBlock; };
+    for (int i = 0; i < n; ++i) {
+      const int prev = domain_.wrap(i - 1), next = domain_.wrap(i + 1);
+      const int ribbon[3] = {i, prev, next};
+      for (int r = 0; r < 3; ++r) {
+        double *at = array(i, 18 + r);
+        const LinearRibbon &line = ribbons_[ribbon[r]];
+        for (std::size_t k = 0; k < m; ++k) {
+          const double x = r == 0 ? s[i][first + k] : r == 1 ? 1.0 - d[i][first + k] : d[i][first + k];
+          at[k] = line.snap(std::clamp(x, 0.0, 1.0));
+        }
+        double *values[6];
+        for (int c = 0; c < 6; ++c) values[c] = array(i, 6 * r + c);
+        t.sides[ribbon[r]].evaluate(m, at, values, nullptr);
+      }
+    }
+    std::fill(sum.begin(), sum.begin() + m, Vec3{});
+    for (int i = 0; i < n; ++i) {
+      const int prev = domain_.wrap(i - 1), next = domain_.wrap(i + 1);
+      const RibbonJet &iStart = ribbonStarts_[i], &iEnd = ribbonEnds_[i];
+      const RibbonJet &prevEnd = ribbonEnds_[prev], &nextStart = ribbonStarts_[next];
+      const CornerData leftCorner{iStart.P, prevEnd.T, -prevEnd.dP, -prevEnd.dT, iStart.dP, iStart.T, iStart.dT};
+      const CornerData rightCorner{nextStart.P, nextStart.T, nextStart.dP, nextStart.dT, -iEnd.dP, iEnd.T, -iEnd.dT};
+      auto point = [&](int r, int f, std::size_t k) {
+        return Vec3{array(i, 6 * r + 3 * f)[k], array(i, 6 * r + 3 * f + 1)[k], array(i, 6 * r + 3 * f + 2)[k]};
+      };
+      for (std::size_t k = 0; k < m; ++k) {
+        const double blend = blends[i][first + k];
+        if (blend == 0) continue;
+        const double si = s[i][first + k], di = d[i][first + k], sigma = 1.0 - si;
+        const double gs = gamma(si), gd = gamma(di), gsigma = gamma(sigma);
+        const Vec3 centre = point(0, 0, k) + gd * point(0, 1, k);
+        const Vec3 leftRibbon = point(1, 0, k) + gs * point(1, 1, k);
+        const Vec3 rightRibbon = point(2, 0, k) + gsigma * point(2, 1, k);
+        const Vec3 leftCorrection = gregoryCorrectionOf(leftCorner, si, di, gs, gd);
+        const Vec3 rightCorrection = gregoryCorrectionOf(rightCorner, sigma, di, gsigma, gd);
+        const double a0s = hermite0(si), a1s = 1.0 - a0s, a0d = hermite0(di);
+        sum[k] += blend * (a0s * leftRibbon + a0d * centre + a1s * rightRibbon - (a0s * a0d) * leftCorrection -
+                           (a1s * a0d) * rightCorrection);
+      }
+    }
+    for (std::size_t k = 0; k < m; ++k) out.set(first + k, 0.5 * sum[k]);
+  }
+}
+
 } // namespace v1
 } // namespace curvenet

@@ -119,6 +119,11 @@ private:
                                const PatchTables *tables = nullptr) const;
   /// The same formula's point alone from values (no gradients).
   Vec3 compositeRibbonPoint(const double *s, const double *d, const double *blends, const PatchTables *tables) const;
+  /// compositeRibbonPoint at many samples (arrays s[i][k], d[i][k],
+  /// blends[i][k]) with the ribbons from the tables, three batches of the
+  /// table kernel per side.
+  void compositeRibbonPositions(std::size_t count, const double *const *s, const double *const *d,
+                                const double *const *blends, const PositionSink &out) const;
   /// Both of the above, over Dual or double.
   template <class T> auto compositeRibbonWith(const T *s, const T *d, const T *blends, const PatchTables *tables) const;
   DualVec3 gregoryG2(Dual u, Dual v) const;

@@ -142,14 +142,33 @@ void Patch::evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t fir
   CURVENET_CHECK(plan.key().sides == n && plan.key().scheme == options_.scheme,
                  "plan for " + std::to_string(plan.key().sides) + " sides used on a patch with " + std::to_string(n));
   if (options_.scheme == Scheme::CompositeRibbon) {
-    // The CR formula on values alone (no gradients), per sample.
-    const PatchTables *tables = plan.key().resolution >= kTableResolution ? &this->tables() : nullptr;
-    std::array<double, kMaxSides> s, d, q, blend;
+    // The CR formula on values alone (no gradients): batched through the
+    // tables at high resolutions, else per sample with exact ribbons.
+    const bool tables = plan.key().resolution >= kTableResolution;
+    thread_local std::vector<double> values;
+    values.resize(3 * static_cast<std::size_t>(n) * count);
+    std::array<double *, kMaxSides> s, d, q;
+    for (int i = 0; i < n; ++i)
+      s[i] = &values[(3 * i) * count], d[i] = &values[(3 * i + 1) * count], q[i] = &values[(3 * i + 2) * count];
+    for (int i = 0; i < n; ++i)
+      for (std::size_t k = 0; k < count; ++k)
+        s[i][k] = plan.sideValue(i, first + k), d[i][k] = plan.distanceValue(i, first + k),
+        q[i][k] = plan.blendValue(i, first + k);
+    // Side i's blend is B_i = q_i + q_{i+1}: in place, q_0 kept for the last.
+    thread_local std::vector<double> firstCorner;
+    firstCorner.assign(q[0], q[0] + count);
+    for (int i = 0; i < n; ++i) {
+      const double *following = i + 1 < n ? q[i + 1] : firstCorner.data();
+      for (std::size_t k = 0; k < count; ++k) q[i][k] += following[k];
+    }
+    if (tables) {
+      compositeRibbonPositions(count, s.data(), d.data(), q.data(), out);
+      return;
+    }
+    std::array<double, kMaxSides> sk, dk, bk;
     for (std::size_t k = 0; k < count; ++k) {
-      for (int i = 0; i < n; ++i) s[i] = plan.sideValue(i, first + k), d[i] = plan.distanceValue(i, first + k),
-                                  q[i] = plan.blendValue(i, first + k);
-      for (int i = 0; i < n; ++i) blend[i] = q[i] + q[domain_.wrap(i + 1)];
-      out.set(k, compositeRibbonPoint(s.data(), d.data(), blend.data(), tables));
+      for (int i = 0; i < n; ++i) sk[i] = s[i][k], dk[i] = d[i][k], bk[i] = q[i][k];
+      out.set(k, compositeRibbonPoint(sk.data(), dk.data(), bk.data(), nullptr));
     }
     return;
   }
