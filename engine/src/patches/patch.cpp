@@ -47,7 +47,7 @@ template <> struct Numbers<double> {
 };
 
 /// rationalTerm over either number type.
-template <class T> typename Numbers<T>::Point rationalTermOf(const Vec3 &a, const Vec3 &b, T x, T y) {
+template <class T> [[gnu::always_inline]] inline typename Numbers<T>::Point rationalTermOf(const Vec3 &a, const Vec3 &b, T x, T y) {
   const T sum = x + y;
   if (Numbers<T>::value(sum) == 0) return Numbers<T>::constant((a + b) * 0.5);
   return (x / sum) * a + (y / sum) * b;
@@ -55,7 +55,7 @@ template <class T> typename Numbers<T>::Point rationalTermOf(const Vec3 &a, cons
 
 /// gregoryCorrection over either number type.
 template <class T>
-typename Numbers<T>::Point gregoryCorrectionOf(const CornerData &c, T s, T t, T gs, T gt) {
+[[gnu::always_inline]] inline typename Numbers<T>::Point gregoryCorrectionOf(const CornerData &c, T s, T t, T gs, T gt) {
   const T s2 = s * s, t2 = t * t;
   typename Numbers<T>::Point q = Numbers<T>::constant(c.a00);
   q += gs * rationalTermOf(c.a10, c.b10, s, t2);
@@ -336,64 +336,88 @@ Vec3 Patch::compositeRibbonPoint(const double *s, const double *d, const double 
   return compositeRibbonWith(s, d, blends, tables);
 }
 
-void Patch::compositeRibbonPositions(std::size_t count, const double *const *s, const double *const *d,
-                                     const double *const *blends, const PositionSink &out) const {
-  // Blocks whose ribbon arrays (18 per side) stay in the fast caches.
+template <class T, class Emit>
+void Patch::compositeRibbonBatch(std::size_t count, const T *const *s, const T *const *d, const T *const *blends,
+                                 const Emit &emit) const {
+  using N = Numbers<T>;
+  using Point = typename N::Point;
+  constexpr bool slopes = !std::is_same_v<T, double>;
+  // Blocks whose ribbon arrays (up to 36 per side) stay in the fast caches.
   constexpr std::size_t kBlock = 64;
+  constexpr int kPerRibbon = slopes ? 12 : 6;   // P, T (and their slopes)
+  constexpr int kArrays = 3 * kPerRibbon + 3;   // three ribbons and their parameters
   const int n = domain_.sides();
   const PatchTables &t = tables();
   thread_local std::vector<double> scratch;
-  scratch.resize(static_cast<std::size_t>(n) * 21 * kBlock);
-  auto gamma = [](double x) { return x / (x * 2.0 + 1.0); };
-  auto hermite0 = [](double x) { return x * x * (x * 2.0 - 3.0) + 1.0; };
-  std::array<Vec3, kBlock> sum;
+  scratch.resize(static_cast<std::size_t>(n) * kArrays * kBlock);
+  auto gamma = [](T x) { return x / (x * 2.0 + 1.0); };
+  auto hermite0 = [](T x) { return x * x * (x * 2.0 - 3.0) + 1.0; };
+  std::array<Point, kBlock> sum;
   for (std::size_t first = 0; first < count; first += kBlock) {
     const std::size_t m = std::min(kBlock, count - first);
     // Per side i, three ribbons as in compositeRibbonWith: R_i at s_i, R_{i−1}
     // at 1 − d_i, R_{i+1} at d_i, each through the table kernel.
-    auto array = [&](int i, int j) { return scratch.data() + (static_cast<std::size_t>(i) * 21 + j) * kBlock; };
+    auto array = [&](int i, int j) { return scratch.data() + (static_cast<std::size_t>(i) * kArrays + j) * kBlock; };
     for (int i = 0; i < n; ++i) {
-      const int prev = domain_.wrap(i - 1), next = domain_.wrap(i + 1);
-      const int ribbon[3] = {i, prev, next};
+      const int ribbon[3] = {i, domain_.wrap(i - 1), domain_.wrap(i + 1)};
       for (int r = 0; r < 3; ++r) {
-        double *at = array(i, 18 + r);
+        double *at = array(i, kArrays - 3 + r);
         const LinearRibbon &line = ribbons_[ribbon[r]];
         for (std::size_t k = 0; k < m; ++k) {
-          const double x = r == 0 ? s[i][first + k] : r == 1 ? 1.0 - d[i][first + k] : d[i][first + k];
+          const double x = r == 0   ? N::value(s[i][first + k])
+                           : r == 1 ? 1.0 - N::value(d[i][first + k])
+                                    : N::value(d[i][first + k]);
           at[k] = line.snap(std::clamp(x, 0.0, 1.0));
         }
-        double *values[6];
-        for (int c = 0; c < 6; ++c) values[c] = array(i, 6 * r + c);
-        t.sides[ribbon[r]].evaluate(m, at, values, nullptr);
+        double *values[6], *derivatives[6];
+        for (int c = 0; c < 6; ++c)
+          values[c] = array(i, kPerRibbon * r + c), derivatives[c] = slopes ? array(i, kPerRibbon * r + 6 + c) : nullptr;
+        t.sides[ribbon[r]].evaluate(m, at, values, slopes ? derivatives : nullptr);
       }
     }
-    std::fill(sum.begin(), sum.begin() + m, Vec3{});
+    std::fill(sum.begin(), sum.begin() + m, Point{});
     for (int i = 0; i < n; ++i) {
       const int prev = domain_.wrap(i - 1), next = domain_.wrap(i + 1);
       const RibbonJet &iStart = ribbonStarts_[i], &iEnd = ribbonEnds_[i];
       const RibbonJet &prevEnd = ribbonEnds_[prev], &nextStart = ribbonStarts_[next];
       const CornerData leftCorner{iStart.P, prevEnd.T, -prevEnd.dP, -prevEnd.dT, iStart.dP, iStart.T, iStart.dT};
       const CornerData rightCorner{nextStart.P, nextStart.T, nextStart.dP, nextStart.dT, -iEnd.dP, iEnd.T, -iEnd.dT};
-      auto point = [&](int r, int f, std::size_t k) {
-        return Vec3{array(i, 6 * r + 3 * f)[k], array(i, 6 * r + 3 * f + 1)[k], array(i, 6 * r + 3 * f + 2)[k]};
+      // Ribbon r's P (f = 0) or T (f = 1), value and slope, at sample k.
+      auto vec = [&](int r, int f, int slope, std::size_t k) {
+        const int j = kPerRibbon * r + 6 * slope + 3 * f;
+        return Vec3{array(i, j)[k], array(i, j + 1)[k], array(i, j + 2)[k]};
+      };
+      auto ribbonAt = [&](int r, T side, T distance, std::size_t k) {
+        return N::along(vec(r, 0, 0, k), slopes ? vec(r, 0, 1, k) : Vec3{}, side) +
+               gamma(distance) * N::along(vec(r, 1, 0, k), slopes ? vec(r, 1, 1, k) : Vec3{}, side);
       };
       for (std::size_t k = 0; k < m; ++k) {
-        const double blend = blends[i][first + k];
-        if (blend == 0) continue;
-        const double si = s[i][first + k], di = d[i][first + k], sigma = 1.0 - si;
-        const double gs = gamma(si), gd = gamma(di), gsigma = gamma(sigma);
-        const Vec3 centre = point(0, 0, k) + gd * point(0, 1, k);
-        const Vec3 leftRibbon = point(1, 0, k) + gs * point(1, 1, k);
-        const Vec3 rightRibbon = point(2, 0, k) + gsigma * point(2, 1, k);
-        const Vec3 leftCorrection = gregoryCorrectionOf(leftCorner, si, di, gs, gd);
-        const Vec3 rightCorrection = gregoryCorrectionOf(rightCorner, sigma, di, gsigma, gd);
-        const double a0s = hermite0(si), a1s = 1.0 - a0s, a0d = hermite0(di);
+        const T blend = blends[i][first + k];
+        if (N::isZero(blend)) continue;
+        const T si = s[i][first + k], di = d[i][first + k], one = 1.0, sigma = one - si;
+        const Point centre = ribbonAt(0, si, di, k);
+        const Point leftRibbon = ribbonAt(1, one - di, si, k);
+        const Point rightRibbon = ribbonAt(2, di, sigma, k);
+        const T gd = gamma(di);
+        const Point leftCorrection = gregoryCorrectionOf(leftCorner, si, di, gamma(si), gd);
+        const Point rightCorrection = gregoryCorrectionOf(rightCorner, sigma, di, gamma(sigma), gd);
+        const T a0s = hermite0(si), a1s = one - a0s, a0d = hermite0(di);
         sum[k] += blend * (a0s * leftRibbon + a0d * centre + a1s * rightRibbon - (a0s * a0d) * leftCorrection -
                            (a1s * a0d) * rightCorrection);
       }
     }
-    for (std::size_t k = 0; k < m; ++k) out.set(first + k, 0.5 * sum[k]);
+    for (std::size_t k = 0; k < m; ++k) emit(first + k, T(0.5) * sum[k]);
   }
+}
+
+void Patch::compositeRibbonPositions(std::size_t count, const double *const *s, const double *const *d,
+                                     const double *const *blends, const PositionSink &out) const {
+  compositeRibbonBatch(count, s, d, blends, [&](std::size_t k, const Vec3 &p) { out.set(k, p); });
+}
+
+void Patch::compositeRibbonJets(std::size_t count, const Dual *const *s, const Dual *const *d,
+                                const Dual *const *blends, DualVec3 *out) const {
+  compositeRibbonBatch(count, s, d, blends, [&](std::size_t k, const DualVec3 &p) { out[k] = p; });
 }
 
 } // namespace v1

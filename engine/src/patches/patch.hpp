@@ -124,6 +124,13 @@ private:
   /// table kernel per side.
   void compositeRibbonPositions(std::size_t count, const double *const *s, const double *const *d,
                                 const double *const *blends, const PositionSink &out) const;
+  /// The same with gradients, into out[k].
+  void compositeRibbonJets(std::size_t count, const Dual *const *s, const Dual *const *d, const Dual *const *blends,
+                           DualVec3 *out) const;
+  /// Both of the above: emit(k, point) per sample.
+  template <class T, class Emit>
+  void compositeRibbonBatch(std::size_t count, const T *const *s, const T *const *d, const T *const *blends,
+                            const Emit &emit) const;
   /// Both of the above, over Dual or double.
   template <class T> auto compositeRibbonWith(const T *s, const T *d, const T *blends, const PatchTables *tables) const;
   DualVec3 gregoryG2(Dual u, Dual v) const;

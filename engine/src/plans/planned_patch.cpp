@@ -306,7 +306,21 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
   CURVENET_CHECK(plan.key().sides == n && plan.key().scheme == options_.scheme,
                  "plan for " + std::to_string(plan.key().sides) + " sides used on a patch with " + std::to_string(n));
   if (options_.scheme == Scheme::CompositeRibbon) {
-    const PatchTables *tables = plan.key().resolution >= kTableResolution ? &this->tables() : nullptr;
+    if (plan.key().resolution >= kTableResolution) {
+      // Batched: the ribbons through the table kernel.
+      thread_local std::vector<Dual> values;
+      values.resize(3 * static_cast<std::size_t>(n) * count);
+      std::array<Dual *, kMaxSides> s, d, b;
+      for (int i = 0; i < n; ++i)
+        s[i] = &values[(3 * i) * count], d[i] = &values[(3 * i + 1) * count], b[i] = &values[(3 * i + 2) * count];
+      for (int i = 0; i < n; ++i)
+        for (std::size_t k = 0; k < count; ++k)
+          s[i][k] = plan.side(i, first + k), d[i][k] = plan.distance(i, first + k),
+          b[i][k] = plan.blend(i, first + k) + plan.blend(domain_.wrap(i + 1), first + k);
+      compositeRibbonJets(count, s.data(), d.data(), b.data(), out);
+      return;
+    }
+    const PatchTables *tables = nullptr;
     std::array<Dual, kMaxSides> s, d, q, blend;
     for (std::size_t k = 0; k < count; ++k) {
       for (int i = 0; i < n; ++i) s[i] = plan.side(i, first + k), d[i] = plan.distance(i, first + k),
