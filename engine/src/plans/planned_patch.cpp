@@ -53,6 +53,30 @@ struct JetArrays {
 constexpr int kMaxSides = 8;
 constexpr int kMaxCornerVectors = 17; // a00 and the eight (a, b) pairs of eq. 22
 
+/// A composite-ribbon batch's inputs as arrays: side i's parameter s[i][k],
+/// distance d[i][k] and blend b[i][k] = q_i + q_{i+1} from the per-corner
+/// quantities q (the plan's blends), through value(i, k, which).
+template <class T> struct CompositeInputs {
+  std::vector<T> storage;
+  std::array<T *, kMaxSides> s{}, d{}, b{};
+  template <class Value> void fill(int n, std::size_t count, const Value &value) {
+    storage.resize(3 * static_cast<std::size_t>(n) * count);
+    for (int i = 0; i < n; ++i)
+      s[i] = &storage[(3 * i) * count], d[i] = &storage[(3 * i + 1) * count], b[i] = &storage[(3 * i + 2) * count];
+    for (int i = 0; i < n; ++i)
+      for (std::size_t k = 0; k < count; ++k)
+        s[i][k] = value(i, k, 0), d[i][k] = value(i, k, 1), b[i][k] = value(i, k, 2) + value((i + 1) % n, k, 2);
+  }
+  /// f(k, s, d, b) with every side's values at sample k, for each sample.
+  template <class F> void eachSample(int n, std::size_t count, const F &f) const {
+    std::array<T, kMaxSides> sk, dk, bk;
+    for (std::size_t k = 0; k < count; ++k) {
+      for (int i = 0; i < n; ++i) sk[i] = s[i][k], dk[i] = d[i][k], bk[i] = b[i][k];
+      f(k, sk.data(), dk.data(), bk.data());
+    }
+  }
+};
+
 } // namespace
 
 kernels::GregoryCorner Patch::cornerVectors(int i) const {
@@ -144,32 +168,19 @@ void Patch::evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t fir
   if (options_.scheme == Scheme::CompositeRibbon) {
     // The CR formula on values alone (no gradients): batched through the
     // tables at high resolutions, else per sample with exact ribbons.
-    const bool tables = plan.key().resolution >= kTableResolution;
-    thread_local std::vector<double> values;
-    values.resize(3 * static_cast<std::size_t>(n) * count);
-    std::array<double *, kMaxSides> s, d, q;
-    for (int i = 0; i < n; ++i)
-      s[i] = &values[(3 * i) * count], d[i] = &values[(3 * i + 1) * count], q[i] = &values[(3 * i + 2) * count];
-    for (int i = 0; i < n; ++i)
-      for (std::size_t k = 0; k < count; ++k)
-        s[i][k] = plan.sideValue(i, first + k), d[i][k] = plan.distanceValue(i, first + k),
-        q[i][k] = plan.blendValue(i, first + k);
-    // Side i's blend is B_i = q_i + q_{i+1}: in place, q_0 kept for the last.
-    thread_local std::vector<double> firstCorner;
-    firstCorner.assign(q[0], q[0] + count);
-    for (int i = 0; i < n; ++i) {
-      const double *following = i + 1 < n ? q[i + 1] : firstCorner.data();
-      for (std::size_t k = 0; k < count; ++k) q[i][k] += following[k];
-    }
-    if (tables) {
-      compositeRibbonPositions(count, s.data(), d.data(), q.data(), out);
+    thread_local CompositeInputs<double> in;
+    in.fill(n, count, [&](int i, std::size_t k, int which) {
+      return which == 0 ? plan.sideValue(i, first + k)
+             : which == 1 ? plan.distanceValue(i, first + k)
+                          : plan.blendValue(i, first + k);
+    });
+    if (plan.key().resolution >= kTableResolution) {
+      compositeRibbonPositions(count, in.s.data(), in.d.data(), in.b.data(), out);
       return;
     }
-    std::array<double, kMaxSides> sk, dk, bk;
-    for (std::size_t k = 0; k < count; ++k) {
-      for (int i = 0; i < n; ++i) sk[i] = s[i][k], dk[i] = d[i][k], bk[i] = q[i][k];
-      out.set(k, compositeRibbonPoint(sk.data(), dk.data(), bk.data(), nullptr));
-    }
+    in.eachSample(n, count, [&](std::size_t k, const double *s, const double *d, const double *b) {
+      out.set(k, compositeRibbonPoint(s, d, b, nullptr));
+    });
     return;
   }
   std::array<const double *, kMaxSides> side, blend;
@@ -306,28 +317,19 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
   CURVENET_CHECK(plan.key().sides == n && plan.key().scheme == options_.scheme,
                  "plan for " + std::to_string(plan.key().sides) + " sides used on a patch with " + std::to_string(n));
   if (options_.scheme == Scheme::CompositeRibbon) {
+    // With gradients: batched through the tables at high resolutions, else
+    // per sample with exact ribbons.
+    thread_local CompositeInputs<Dual> in;
+    in.fill(n, count, [&](int i, std::size_t k, int which) {
+      return which == 0 ? plan.side(i, first + k) : which == 1 ? plan.distance(i, first + k) : plan.blend(i, first + k);
+    });
     if (plan.key().resolution >= kTableResolution) {
-      // Batched: the ribbons through the table kernel.
-      thread_local std::vector<Dual> values;
-      values.resize(3 * static_cast<std::size_t>(n) * count);
-      std::array<Dual *, kMaxSides> s, d, b;
-      for (int i = 0; i < n; ++i)
-        s[i] = &values[(3 * i) * count], d[i] = &values[(3 * i + 1) * count], b[i] = &values[(3 * i + 2) * count];
-      for (int i = 0; i < n; ++i)
-        for (std::size_t k = 0; k < count; ++k)
-          s[i][k] = plan.side(i, first + k), d[i][k] = plan.distance(i, first + k),
-          b[i][k] = plan.blend(i, first + k) + plan.blend(domain_.wrap(i + 1), first + k);
-      compositeRibbonJets(count, s.data(), d.data(), b.data(), out);
+      compositeRibbonJets(count, in.s.data(), in.d.data(), in.b.data(), out);
       return;
     }
-    const PatchTables *tables = nullptr;
-    std::array<Dual, kMaxSides> s, d, q, blend;
-    for (std::size_t k = 0; k < count; ++k) {
-      for (int i = 0; i < n; ++i) s[i] = plan.side(i, first + k), d[i] = plan.distance(i, first + k),
-                                  q[i] = plan.blend(i, first + k);
-      for (int i = 0; i < n; ++i) blend[i] = q[i] + q[domain_.wrap(i + 1)];
-      out[k] = compositeRibbonFrom(s.data(), d.data(), blend.data(), tables);
-    }
+    in.eachSample(n, count, [&](std::size_t k, const Dual *s, const Dual *d, const Dual *b) {
+      out[k] = compositeRibbonFrom(s, d, b);
+    });
     return;
   }
 
