@@ -119,6 +119,8 @@ private:
                                const PatchTables *tables = nullptr) const;
   /// The same formula's point alone from values (no gradients).
   Vec3 compositeRibbonPoint(const double *s, const double *d, const double *blends, const PatchTables *tables) const;
+  /// Both of the above: the formula once, over Dual or double.
+  template <class T> auto compositeRibbonWith(const T *s, const T *d, const T *blends, const PatchTables *tables) const;
   /// compositeRibbonPoint at many samples (arrays s[i][k], d[i][k],
   /// blends[i][k]) with the ribbons from the tables, three batches of the
   /// table kernel per side.
@@ -127,12 +129,10 @@ private:
   /// The same with gradients, into out[k].
   void compositeRibbonJets(std::size_t count, const Dual *const *s, const Dual *const *d, const Dual *const *blends,
                            DualVec3 *out) const;
-  /// Both of the above: emit(k, point) per sample.
+  /// Both batch forms: emit(k, point) per sample.
   template <class T, class Emit>
   void compositeRibbonBatch(std::size_t count, const T *const *s, const T *const *d, const T *const *blends,
                             const Emit &emit) const;
-  /// Both of the above, over Dual or double.
-  template <class T> auto compositeRibbonWith(const T *s, const T *d, const T *blends, const PatchTables *tables) const;
   DualVec3 gregoryG2(Dual u, Dual v) const;
   /// Fills side i's parameter and corner i's blend with their gradients
   /// (value, ∂/∂u, ∂/∂v arrays) for samples [first, first + count).
@@ -144,9 +144,6 @@ private:
   void gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bool useTables, DualVec3 *out) const;
   /// The same from arrays sides[i·count + k], blends[i·count + k].
   void gregoryJetsFrom(std::size_t count, const Dual *sides, const Dual *blends, bool useTables, DualVec3 *out) const;
-  /// One block of gregoryJetsFrom (internal types behind void pointers).
-  void gregoryJetsBlock(std::size_t count, const void *sideArrays, const void *blendArrays, bool useTables,
-                        void *scratch, DualVec3 *out) const;
   /// The Gregory formula's positions from every side's parameter and
   /// corner blend values (arrays of `count`): tables, then the kernel.
   void gregoryPositionsFrom(std::size_t count, const double *const *side, const double *const *blend,

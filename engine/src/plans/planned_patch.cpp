@@ -348,18 +348,88 @@ void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bo
   constexpr std::size_t kBlock = 64;
   const int n = domain_.sides();
   const bool g2 = options_.scheme == Scheme::GregoryG2;
+  const PatchTables *tables = useTables ? &this->tables() : nullptr;
+  std::array<kernels::GregoryCorner, kMaxSides> cornerStore;
+  const kernels::GregoryCorner *corners = tables ? tables->corners.data() : cornerStore.data();
+  if (!tables)
+    for (int i = 0; i < n; ++i) cornerStore[i] = cornerVectors(i);
   thread_local Scratch scratch;
+  thread_local std::vector<RibbonJet> linearJets;
+  thread_local std::vector<ParabolicJet> parabolicJets;
   const std::size_t jetArrays = g2 ? 18 : 12;
   for (std::size_t first = 0; first < count; first += kBlock) {
     const std::size_t m = std::min(kBlock, count - first);
     scratch.reset(m, static_cast<std::size_t>(n) * (6 + jetArrays) + 10);
     std::array<DualArray, kMaxSides> side, blend;
+    std::array<JetArrays, kMaxSides> jets;
     for (int i = 0; i < n; ++i) {
       side[i].take(scratch), blend[i].take(scratch);
       double *const s[3] = {side[i].v, side[i].du, side[i].dv}, *const b[3] = {blend[i].v, blend[i].du, blend[i].dv};
       source(i, first, m, s, b);
+      jets[i].P.take(scratch), jets[i].dP.take(scratch), jets[i].T.take(scratch), jets[i].dT.take(scratch);
+      if (g2) jets[i].C.take(scratch), jets[i].dC.take(scratch);
     }
-    gregoryJetsBlock(m, side.data(), blend.data(), useTables, &scratch, out + first);
+    double *result[9];
+    for (double *&p : result) p = scratch.take();
+    double *at = scratch.take();
+
+    // Geometry: each side's ribbon at the plan's side parameters, one batch
+    // per side — from the tables at high resolutions, else exactly (the
+    // plan's samples run along rows, so consecutive side parameters mostly
+    // share a knot span).
+    for (int i = 0; i < n; ++i) {
+      // As in gregoryPositionsFrom: the side parameters are table parameters
+      // as they are, except on sides of several segments (and for the exact
+      // ribbons), where a parameter at a break takes its left piece.
+      std::span<const double> parameters;
+      if (tables && ribbons_[i].pieces().size() == 1) {
+        parameters = {side[i].v, m};
+      } else {
+        for (std::size_t k = 0; k < m; ++k) at[k] = ribbons_[i].snap(std::clamp(side[i].v[k], 0.0, 1.0));
+        parameters = {at, m};
+      }
+      if (tables) {
+        double *values[9] = {jets[i].P.c[0], jets[i].P.c[1], jets[i].P.c[2], jets[i].T.c[0], jets[i].T.c[1],
+                             jets[i].T.c[2], jets[i].C.c[0], jets[i].C.c[1], jets[i].C.c[2]};
+        double *slopes[9] = {jets[i].dP.c[0], jets[i].dP.c[1], jets[i].dP.c[2], jets[i].dT.c[0], jets[i].dT.c[1],
+                             jets[i].dT.c[2], jets[i].dC.c[0], jets[i].dC.c[1], jets[i].dC.c[2]};
+        tables->sides[i].evaluate(m, parameters.data(), values, slopes);
+      } else if (g2) {
+        parabolicJets.resize(m);
+        parabolic_[i].at(parameters, parabolicJets);
+        for (std::size_t k = 0; k < m; ++k) {
+          const ParabolicJet &j = parabolicJets[k];
+          jets[i].P.set(k, j.P), jets[i].dP.set(k, j.dP), jets[i].T.set(k, j.T), jets[i].dT.set(k, j.dT);
+          jets[i].C.set(k, j.C), jets[i].dC.set(k, j.dC);
+        }
+      } else {
+        linearJets.resize(m);
+        ribbons_[i].at(parameters, linearJets);
+        for (std::size_t k = 0; k < m; ++k) {
+          const RibbonJet &j = linearJets[k];
+          jets[i].P.set(k, j.P), jets[i].dP.set(k, j.dP), jets[i].T.set(k, j.T), jets[i].dT.set(k, j.dT);
+        }
+      }
+    }
+
+    // The Gregory formula (eqs. 16–18, 22) with its derivatives in one kernel pass.
+    kernels::GregoryJetSamples in;
+    in.values.sides = n, in.values.parabolic = g2;
+    for (int i = 0; i < n; ++i) {
+      in.values.s[i] = side[i].v, in.sDu[i] = side[i].du, in.sDv[i] = side[i].dv;
+      in.values.blend[i] = blend[i].v, in.blendDu[i] = blend[i].du, in.blendDv[i] = blend[i].dv;
+      for (int c = 0; c < 3; ++c) {
+        in.values.P[i][c] = jets[i].P.c[c], in.values.T[i][c] = jets[i].T.c[c];
+        in.dP[i][c] = jets[i].dP.c[c], in.dT[i][c] = jets[i].dT.c[c];
+        if (g2) in.values.C[i][c] = jets[i].C.c[c], in.dC[i][c] = jets[i].dC.c[c];
+      }
+    }
+    kernels::gregoryJets(m, in, corners,
+                         {{result[0], result[1], result[2]}, {result[3], result[4], result[5]}, {result[6], result[7], result[8]}});
+    for (std::size_t k = 0; k < m; ++k)
+      out[first + k] = {{result[0][k], result[1][k], result[2][k]},
+                        {result[3][k], result[4][k], result[5][k]},
+                        {result[6][k], result[7][k], result[8][k]}};
   }
 }
 
@@ -374,88 +444,6 @@ void Patch::gregoryJetsFrom(std::size_t count, const Dual *sides, const Dual *bl
         }
       },
       useTables, out);
-}
-
-void Patch::gregoryJetsBlock(std::size_t count, const void *sideArrays, const void *blendArrays, bool useTables,
-                             void *scratchSpace, DualVec3 *out) const {
-  const int n = domain_.sides();
-  const bool g2 = options_.scheme == Scheme::GregoryG2;
-  Scratch &scratch = *static_cast<Scratch *>(scratchSpace);
-  const auto *side = static_cast<const DualArray *>(sideArrays);
-  const auto *blend = static_cast<const DualArray *>(blendArrays);
-  std::array<JetArrays, kMaxSides> jets;
-  for (int i = 0; i < n; ++i) {
-    jets[i].P.take(scratch), jets[i].dP.take(scratch), jets[i].T.take(scratch), jets[i].dT.take(scratch);
-    if (g2) jets[i].C.take(scratch), jets[i].dC.take(scratch);
-  }
-  double *result[9];
-  for (double *&p : result) p = scratch.take();
-  double *at = scratch.take();
-
-  // Geometry: each side's ribbon at the plan's side parameters, one batch per
-  // side — from the tables at high resolutions, else exactly (the plan's
-  // samples run along rows, so consecutive side parameters mostly share a
-  // knot span).
-  const PatchTables *tables = useTables ? &this->tables() : nullptr;
-  thread_local std::vector<RibbonJet> linearJets;
-  thread_local std::vector<ParabolicJet> parabolicJets;
-  std::span<const double> parameters;
-  for (int i = 0; i < n; ++i) {
-    // As in gregoryPositionsFrom: the side parameters are table parameters
-    // as they are, except on sides of several segments (and for the exact
-    // ribbons), where a parameter at a break takes its left piece.
-    if (tables && ribbons_[i].pieces().size() == 1) {
-      parameters = {side[i].v, count};
-    } else {
-      for (std::size_t k = 0; k < count; ++k) at[k] = ribbons_[i].snap(std::clamp(side[i].v[k], 0.0, 1.0));
-      parameters = {at, count};
-    }
-    if (tables) {
-      double *values[9] = {jets[i].P.c[0], jets[i].P.c[1], jets[i].P.c[2], jets[i].T.c[0], jets[i].T.c[1],
-                           jets[i].T.c[2], jets[i].C.c[0], jets[i].C.c[1], jets[i].C.c[2]};
-      double *slopes[9] = {jets[i].dP.c[0], jets[i].dP.c[1], jets[i].dP.c[2], jets[i].dT.c[0], jets[i].dT.c[1],
-                           jets[i].dT.c[2], jets[i].dC.c[0], jets[i].dC.c[1], jets[i].dC.c[2]};
-      tables->sides[i].evaluate(count, parameters.data(), values, slopes);
-    } else if (g2) {
-      parabolicJets.resize(count);
-      parabolic_[i].at(parameters, parabolicJets);
-      for (std::size_t k = 0; k < count; ++k) {
-        const ParabolicJet &j = parabolicJets[k];
-        jets[i].P.set(k, j.P), jets[i].dP.set(k, j.dP), jets[i].T.set(k, j.T), jets[i].dT.set(k, j.dT);
-        jets[i].C.set(k, j.C), jets[i].dC.set(k, j.dC);
-      }
-    } else {
-      linearJets.resize(count);
-      ribbons_[i].at(parameters, linearJets);
-      for (std::size_t k = 0; k < count; ++k) {
-        const RibbonJet &j = linearJets[k];
-        jets[i].P.set(k, j.P), jets[i].dP.set(k, j.dP), jets[i].T.set(k, j.T), jets[i].dT.set(k, j.dT);
-      }
-    }
-  }
-
-  // The Gregory formula (eqs. 16–18, 22) with its derivatives in one kernel pass.
-  kernels::GregoryJetSamples in;
-  in.values.sides = n, in.values.parabolic = g2;
-  for (int i = 0; i < n; ++i) {
-    in.values.s[i] = side[i].v, in.sDu[i] = side[i].du, in.sDv[i] = side[i].dv;
-    in.values.blend[i] = blend[i].v, in.blendDu[i] = blend[i].du, in.blendDv[i] = blend[i].dv;
-    for (int c = 0; c < 3; ++c) {
-      in.values.P[i][c] = jets[i].P.c[c], in.values.T[i][c] = jets[i].T.c[c];
-      in.dP[i][c] = jets[i].dP.c[c], in.dT[i][c] = jets[i].dT.c[c];
-      if (g2) in.values.C[i][c] = jets[i].C.c[c], in.dC[i][c] = jets[i].dC.c[c];
-    }
-  }
-  std::array<kernels::GregoryCorner, kMaxSides> cornerStore;
-  const kernels::GregoryCorner *corners = tables ? tables->corners.data() : cornerStore.data();
-  if (!tables)
-    for (int i = 0; i < n; ++i) cornerStore[i] = cornerVectors(i);
-  kernels::gregoryJets(count, in, corners,
-                       {{result[0], result[1], result[2]}, {result[3], result[4], result[5]}, {result[6], result[7], result[8]}});
-  for (std::size_t k = 0; k < count; ++k)
-    out[k] = {{result[0][k], result[1][k], result[2][k]},
-              {result[3][k], result[4][k], result[5][k]},
-              {result[6][k], result[7][k], result[8][k]}};
 }
 
 void Patch::evaluateBatch(std::size_t count, const double *u, const double *v, DualVec3 *out) const {
