@@ -187,7 +187,7 @@ TEST(Kernels, SweepSolverMatchesEigenvaluesScalarSolverAndAcrossWidths) {
     // And against the engine's scalar grid-and-bisection solver (side 0).
     for (size_t k = 0; k < count; k += 97) {
       const Vec2 q = side.p0 + side.e * x[k] + Vec2{-side.e.y, side.e.x} * y[k];
-      const double s = domain.hermiteSweep(0, Dual::u(q.x), Dual::vCoord(q.y)).s.v;
+      const double s = domain.hermiteSweepByGrid(0, Dual::u(q.x), Dual::vCoord(q.y)).s.v;
       EXPECT_NEAR(s, sRef[k], 1e-8) << "n=" << n << " at " << q.x << "," << q.y;
     }
   }

@@ -48,7 +48,7 @@ TEST(EvaluationPlan, RotatedSideZeroDataIsEverySidesOwn) {
         const Dual u = Dual::u(plan.samples()[k].x), v = Dual::vCoord(plan.samples()[k].y);
         for (int i = 0; i < n; ++i) {
           const Dual direct = key.sweepline == Sweepline::Radial ? domain.radialSideParameter(i, u, v)
-                                                                 : domain.hermiteSweep(i, u, v, quintic).s;
+                                                                 : domain.hermiteSweepByGrid(i, u, v, quintic).s;
           const Dual planned = plan.side(i, k);
           ASSERT_NEAR(planned.v, direct.v, 1e-12) << label(o) << " n=" << n << " k=" << k << " side " << i;
           ASSERT_NEAR(planned.du, direct.du, 1e-9 * (1 + std::abs(direct.du)));

@@ -76,6 +76,18 @@ kernels::SweepFrame RegularDomain::sweepFrame(int i) const {
 }
 
 RegularDomain::SweepParameters RegularDomain::hermiteSweep(int i, Dual u, Dual v, bool quintic) const {
+  // Triangles keep the grid solver: their sweeplines cross near the
+  // opposite corner (see Sweepline), where a point lies on several of them
+  // and the two solvers' selection can part at rounding level.
+  if (quintic || sides() == 3) return hermiteSweepByGrid(i, u, v, quintic);
+  Dual x, y;
+  sideFrame(i, u, v, x, y);
+  double root, distance;
+  kernels::hermiteSweepRoots(1, sweepFrame(i), &x.v, &y.v, &root, &distance, kernels::kScalarReference);
+  return hermiteSweepFromRoot(i, u, v, root);
+}
+
+RegularDomain::SweepParameters RegularDomain::hermiteSweepByGrid(int i, Dual u, Dual v, bool quintic) const {
   Dual x, y;
   sideFrame(i, u, v, x, y);
   const Vec2 e = corner(i + 1) - corner(i);

@@ -50,7 +50,14 @@ public:
   struct SweepParameters {
     Dual s, d;
   };
+  /// The cubic sweep's root comes from kernels::hermiteSweepRoots (certified
+  /// Newton, the robust solver where the certificate fails); the quintic
+  /// sweep's, and a triangle's, from hermiteSweepByGrid.
   SweepParameters hermiteSweep(int i, Dual u, Dual v, bool quintic = false) const;
+  /// The same by the engine's own scalar solver, independent of the kernels:
+  /// sign changes of the quartic on a 64-cell grid refined by bisection, with
+  /// the kernels' selection rule (about ten times the kernel's cost).
+  SweepParameters hermiteSweepByGrid(int i, Dual u, Dual v, bool quintic = false) const;
   /// Side i's sweep constants for the batched kernels (kernels::SweepFrame):
   /// the neighbouring sides' directions in its frame and the radial apex.
   kernels::SweepFrame sweepFrame(int i) const;
