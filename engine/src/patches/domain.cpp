@@ -82,6 +82,15 @@ RegularDomain::SweepParameters RegularDomain::hermiteSweep(int i, Dual u, Dual v
   if (quintic || sides() == 3) return hermiteSweepByGrid(i, u, v, quintic);
   Dual x, y;
   sideFrame(i, u, v, x, y);
+  // Points on the domain's boundary (side i, or sides i ± 1 where the root is
+  // an end of [0, 1]) are the kernel's uncertifiable cases, which its robust
+  // solver would take: the grid solver settles them for a fraction of that.
+  const Vec2 e = corner(i + 1) - corner(i);
+  const Vec2 a = inFrame(e, corner(i - 1) - corner(i)), b = inFrame(e, corner(i + 2) - corner(i + 1));
+  const double atStart = x.v * a.y - y.v * a.x, atEnd = (x.v - 1) * b.y - y.v * b.x; // F(0), F(1)
+  const double tolerance = 1e-12 * (1 + std::abs(x.v) + std::abs(y.v)) * (norm(a) + norm(b));
+  if (y.v <= tolerance || std::abs(atStart) <= tolerance || std::abs(atEnd) <= tolerance)
+    return hermiteSweepByGrid(i, u, v);
   double root, distance;
   kernels::hermiteSweepRoots(1, sweepFrame(i), &x.v, &y.v, &root, &distance, kernels::kScalarReference);
   return hermiteSweepFromRoot(i, u, v, root);
