@@ -274,8 +274,7 @@ DualVec3 Patch::compositeRibbon(Dual u, Dual v) const {
   return compositeRibbonFrom(s.data(), d.data(), blend.data());
 }
 
-template <class T>
-auto Patch::compositeRibbonWith(const T *s, const T *d, const T *blends, const PatchTables *tables) const {
+template <class T> auto Patch::compositeRibbonWith(const T *s, const T *d, const T *blends) const {
   using N = Numbers<T>;
   using Point = typename N::Point;
   const int n = domain_.sides();
@@ -284,17 +283,7 @@ auto Patch::compositeRibbonWith(const T *s, const T *d, const T *blends, const P
   // Ribbon with the γ reparameterization: R_i(s, d) = P_i(s) + γ(d) T_i(s).
   auto ribbon = [&](int i, T side, T dist) {
     const LinearRibbon &r = ribbons_[domain_.wrap(i)];
-    const double at = r.snap(std::clamp(N::value(side), 0.0, 1.0));
-    RibbonJet j;
-    if (tables) {
-      constexpr bool slopes = !std::is_same_v<T, double>;
-      double values[6], derivatives[6] = {};
-      tables->sides[domain_.wrap(i)].evaluate(at, values, slopes ? derivatives : nullptr);
-      j = {{values[0], values[1], values[2]}, {derivatives[0], derivatives[1], derivatives[2]},
-           {values[3], values[4], values[5]}, {derivatives[3], derivatives[4], derivatives[5]}};
-    } else {
-      j = r.at(at);
-    }
+    const RibbonJet j = r.at(r.snap(std::clamp(N::value(side), 0.0, 1.0)));
     return N::along(j.P, j.dP, side) + gamma(dist) * N::along(j.T, j.dT, side);
   };
   Point result{};
@@ -327,13 +316,12 @@ auto Patch::compositeRibbonWith(const T *s, const T *d, const T *blends, const P
   return T(0.5) * result;
 }
 
-DualVec3 Patch::compositeRibbonFrom(const Dual *s, const Dual *d, const Dual *blends, const PatchTables *tables) const {
-  return compositeRibbonWith(s, d, blends, tables);
+DualVec3 Patch::compositeRibbonFrom(const Dual *s, const Dual *d, const Dual *blends) const {
+  return compositeRibbonWith(s, d, blends);
 }
 
-Vec3 Patch::compositeRibbonPoint(const double *s, const double *d, const double *blends,
-                                 const PatchTables *tables) const {
-  return compositeRibbonWith(s, d, blends, tables);
+Vec3 Patch::compositeRibbonPoint(const double *s, const double *d, const double *blends) const {
+  return compositeRibbonWith(s, d, blends);
 }
 
 template <class T, class Emit>

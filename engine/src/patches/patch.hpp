@@ -113,14 +113,13 @@ public:
 private:
   DualVec3 gregory(Dual u, Dual v) const;
   DualVec3 compositeRibbon(Dual u, Dual v) const;
-  /// The CR formula from the side parameters, distances and blends of all sides.
-  /// tables: the ribbons from these (the plan path) instead of exactly.
-  DualVec3 compositeRibbonFrom(const Dual *s, const Dual *d, const Dual *blends,
-                               const PatchTables *tables = nullptr) const;
+  /// The CR formula from the side parameters, distances and blends of all
+  /// sides, the ribbons evaluated exactly (compositeRibbonBatch: from tables).
+  DualVec3 compositeRibbonFrom(const Dual *s, const Dual *d, const Dual *blends) const;
   /// The same formula's point alone from values (no gradients).
-  Vec3 compositeRibbonPoint(const double *s, const double *d, const double *blends, const PatchTables *tables) const;
+  Vec3 compositeRibbonPoint(const double *s, const double *d, const double *blends) const;
   /// Both of the above: the formula once, over Dual or double.
-  template <class T> auto compositeRibbonWith(const T *s, const T *d, const T *blends, const PatchTables *tables) const;
+  template <class T> auto compositeRibbonWith(const T *s, const T *d, const T *blends) const;
   /// compositeRibbonPoint at many samples (arrays s[i][k], d[i][k],
   /// blends[i][k]) with the ribbons from the tables, three batches of the
   /// table kernel per side.

@@ -179,7 +179,7 @@ void Patch::evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t fir
       return;
     }
     in.eachSample(n, count, [&](std::size_t k, const double *s, const double *d, const double *b) {
-      out.set(k, compositeRibbonPoint(s, d, b, nullptr));
+      out.set(k, compositeRibbonPoint(s, d, b));
     });
     return;
   }
