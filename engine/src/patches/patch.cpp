@@ -19,14 +19,6 @@ DualVec3 ribbonAt(const RibbonJet &j, Dual s, Dual d) {
   return DualVec3::along(j.P, j.dP, s) + d * DualVec3::along(j.T, j.dT, s);
 }
 
-/// W = (x a + y b) / (x + y); the corner limit (x = y = 0) is finite but
-/// irrelevant, because the caller multiplies W by a vanishing factor.
-DualVec3 rationalTerm(const Vec3 &a, const Vec3 &b, Dual x, Dual y) {
-  const Dual sum = x + y;
-  if (sum.v == 0) return DualVec3::constant((a + b) * 0.5);
-  return (x / sum) * a + (y / sum) * b;
-}
-
 /// The number types the Composite Ribbon formula runs on: Dual (value and
 /// gradient, for tessellation) and double (positions alone, three times
 /// cheaper). The formula is written once over these.
@@ -46,7 +38,9 @@ template <> struct Numbers<double> {
   static bool isZero(double x) { return x == 0; }
 };
 
-/// rationalTerm over either number type.
+/// W = (x a + y b) / (x + y) over either number type; the corner limit
+/// (x = y = 0) is finite but irrelevant, because the caller multiplies W by a
+/// vanishing factor.
 template <class T> [[gnu::always_inline]] inline typename Numbers<T>::Point rationalTermOf(const Vec3 &a, const Vec3 &b, T x, T y) {
   const T sum = x + y;
   if (Numbers<T>::value(sum) == 0) return Numbers<T>::constant((a + b) * 0.5);
@@ -118,7 +112,7 @@ DualVec3 gregoryCorrection2(const CornerData2 &c, Dual s, Dual t) {
     for (int r = 0; r <= 2; ++r) {
       if (p == 0 && r == 0) continue;
       const Dual weight = sp[p] * tp[r] * Dual(inverseFactorial[p] * inverseFactorial[r]);
-      q += weight * rationalTerm(c.a[p][r], c.b[p][r], sp[3 - p], tp[3 - r]);
+      q += weight * rationalTermOf(c.a[p][r], c.b[p][r], sp[3 - p], tp[3 - r]);
     }
   return q;
 }
@@ -135,7 +129,14 @@ Patch::Patch(std::vector<LinearRibbon> ribbons, const SurfaceOptions &options, s
     options_.sweepline = options_.scheme == Scheme::GregoryG2 ? Sweepline::Hermite : Sweepline::Radial;
   CURVENET_CHECK(options_.scheme != Scheme::GregoryG2 || parabolic_.size() == ribbons_.size(),
                  "gregory-g2 needs one parabolic ribbon per side");
-  for (const LinearRibbon &ribbon : ribbons_) ribbonStarts_.push_back(ribbon.at(0.0)), ribbonEnds_.push_back(ribbon.at(1.0));
+  std::vector<RibbonJet> starts, ends;
+  for (const LinearRibbon &ribbon : ribbons_) starts.push_back(ribbon.at(0.0)), ends.push_back(ribbon.at(1.0));
+  for (int i = 0; i < domain_.sides(); ++i) {
+    const RibbonJet &start = starts[i], &end = ends[i];
+    const RibbonJet &prevEnd = ends[domain_.wrap(i - 1)], &nextStart = starts[domain_.wrap(i + 1)];
+    corners_.push_back({start.P, prevEnd.T, -prevEnd.dP, -prevEnd.dT, start.dP, start.T, start.dT});
+    endCorners_.push_back({nextStart.P, nextStart.T, nextStart.dP, nextStart.dT, -end.dP, end.T, -end.dT});
+  }
 }
 
 DualVec3 Patch::evaluate(double u, double v) const {
@@ -184,11 +185,8 @@ DualVec3 Patch::gregory(Dual u, Dual v) const {
     const RibbonJet &left = jet[prev], &right = jet[i];
     // I_{i,i−1} = R_{i−1}(s_{i−1}, s_i) + R_i(s_i, 1 − s_{i−1}) − Q(s_i, 1 − s_{i−1}) (eq. 17).
     const Dual si = s[i], ti = Dual(1.0) - s[prev];
-    const RibbonJet start = ribbons_[i].at(0.0), end = ribbons_[prev].at(1.0);
-    const CornerData corner{start.P,   end.T, -end.dP, -end.dT, // from R_{i−1}(1 − t, s): matched across t = 0
-                            start.dP, start.T, start.dT};       // from R_i(s, t): matched across s = 0
     const DualVec3 interpolant = ribbonAt(left, s[prev], si) + ribbonAt(right, si, ti) -
-                                 gregoryCorrection(corner, si, ti, si, ti);
+                                 gregoryCorrection(corners_[i], si, ti, si, ti);
     result += b * interpolant;
   }
   return result;
@@ -297,17 +295,10 @@ template <class T> auto Patch::compositeRibbonWith(const T *s, const T *d, const
     const Point centre = ribbon(i, si, di);
     const Point leftRibbon = ribbon(prev, one - di, si);  // R_{i−1}(1 − d, s)
     const Point rightRibbon = ribbon(next, di, one - si); // R_{i+1}(d, 1 − s)
-    const RibbonJet &iStart = ribbonStarts_[i], &iEnd = ribbonEnds_[i];
-    const RibbonJet &prevEnd = ribbonEnds_[prev], &nextStart = ribbonStarts_[next];
-    // Left corner, local (s, d): match R^l across d = 0 and R_i across s = 0.
-    const CornerData leftCorner{iStart.P,  prevEnd.T,  -prevEnd.dP, -prevEnd.dT,
-                                iStart.dP, iStart.T,   iStart.dT};
-    // Right corner, local (σ = 1 − s, d): match R^r across d = 0 and R_i across σ = 0.
-    const CornerData rightCorner{nextStart.P, nextStart.T, nextStart.dP, nextStart.dT,
-                                 -iEnd.dP,    iEnd.T,      -iEnd.dT};
+    // Left corner in (s, d), right corner in (σ = 1 − s, d): corners_, endCorners_.
     const T sigma = one - si;
-    const Point leftCorrection = gregoryCorrectionOf(leftCorner, si, di, gamma(si), gamma(di));
-    const Point rightCorrection = gregoryCorrectionOf(rightCorner, sigma, di, gamma(sigma), gamma(di));
+    const Point leftCorrection = gregoryCorrectionOf(corners_[i], si, di, gamma(si), gamma(di));
+    const Point rightCorrection = gregoryCorrectionOf(endCorners_[i], sigma, di, gamma(sigma), gamma(di));
     const T a0s = hermite0(si), a1s = one - a0s, a0d = hermite0(di);
     const Point curved = a0s * leftRibbon + a0d * centre + a1s * rightRibbon -
                          (a0s * a0d) * leftCorrection - (a1s * a0d) * rightCorrection;
@@ -365,11 +356,7 @@ void Patch::compositeRibbonBatch(std::size_t count, const T *const *s, const T *
     }
     std::fill(sum.begin(), sum.begin() + m, Point{});
     for (int i = 0; i < n; ++i) {
-      const int prev = domain_.wrap(i - 1), next = domain_.wrap(i + 1);
-      const RibbonJet &iStart = ribbonStarts_[i], &iEnd = ribbonEnds_[i];
-      const RibbonJet &prevEnd = ribbonEnds_[prev], &nextStart = ribbonStarts_[next];
-      const CornerData leftCorner{iStart.P, prevEnd.T, -prevEnd.dP, -prevEnd.dT, iStart.dP, iStart.T, iStart.dT};
-      const CornerData rightCorner{nextStart.P, nextStart.T, nextStart.dP, nextStart.dT, -iEnd.dP, iEnd.T, -iEnd.dT};
+      const CornerData &leftCorner = corners_[i], &rightCorner = endCorners_[i];
       // Ribbon r's P (f = 0) or T (f = 1), value and slope, at sample k.
       auto vec = [&](int r, int f, int slope, std::size_t k) {
         const int j = kPerRibbon * r + 6 * slope + 3 * f;

@@ -48,6 +48,14 @@ struct PositionSink {
   }
 };
 
+/// Corner data of two ribbons meeting at a corner, in the corner's local
+/// coordinates (s along the first side, t across it): a_pq from the ribbon
+/// that must be matched across t = 0, b_pq from the one matched across s = 0,
+/// p, q ∈ {0, 1}. Used by both schemes' correction patches.
+struct CornerData {
+  Vec3 a00, a10, a01, a11, b10, b01, b11;
+};
+
 class Patch {
 public:
   /// `parabolic` (one per side, over the same linear ribbons) is required by
@@ -155,22 +163,18 @@ private:
   RegularDomain domain_;
   std::vector<LinearRibbon> ribbons_;
   std::vector<ParabolicRibbon> parabolic_;
-  /// Each ribbon's jet at s = 0 and s = 1 (the corners' data), computed once.
-  std::vector<RibbonJet> ribbonStarts_, ribbonEnds_;
+  /// The linear ribbons' corner data, computed once: corners_[i] at corner i
+  /// in (s_i, t = 1 − s_{i−1}) (R_{i−1} matched across t = 0, R_i across
+  /// s = 0; the Gregory G¹ correction patch and the CR left corner), and
+  /// endCorners_[i] at corner i + 1 seen from side i, in (σ = 1 − s_i, d_i)
+  /// (R_{i+1} matched across d = 0, R_i across σ = 0; the CR right corner).
+  std::vector<CornerData> corners_, endCorners_;
   SurfaceOptions options_;
 };
 
 struct Patch::TableCache {
   std::once_flag once;
   PatchTables tables;
-};
-
-/// Corner data of two ribbons meeting at a corner, in the corner's local
-/// coordinates (s along the first side, t across it): a_pq from the ribbon
-/// that must be matched across t = 0, b_pq from the one matched across s = 0,
-/// p, q ∈ {0, 1}. Used by both schemes' correction patches.
-struct CornerData {
-  Vec3 a00, a10, a01, a11, b10, b01, b11;
 };
 
 /// Gregory's rational correction term (DESIGN.md §3, G¹ case):

@@ -99,9 +99,9 @@ kernels::GregoryCorner Patch::cornerVectors(int i) const {
       for (int r = 0; r <= 2; ++r)
         if (p || r) vectors[used++] = a[p][r], vectors[used++] = b[p][r];
   } else {
-    const RibbonJet start = ribbons_[i].at(0.0), end = ribbons_[prev].at(1.0);
-    // CornerData{a00, a10, a01, a11, b10, b01, b11} of Patch::gregory, in kernel order.
-    vectors = {start.P, end.T, start.dP, -end.dP, start.T, -end.dT, start.dT};
+    // corners_[i] {a00, a10, a01, a11, b10, b01, b11} in kernel order.
+    const CornerData &c = corners_[i];
+    vectors = {c.a00, c.a10, c.b10, c.a01, c.b01, c.a11, c.b11};
   }
   kernels::GregoryCorner corner{};
   for (int c = 0; c < kMaxCornerVectors; ++c)
@@ -152,7 +152,7 @@ const PatchTables &Patch::tables() const {
         };
         t.sides.emplace_back(6, ribbons_[i].breakpoints(), exact);
       }
-      if (options_.scheme == Scheme::CompositeRibbon) continue; // its corners: ribbonStarts_, ribbonEnds_
+      if (options_.scheme == Scheme::CompositeRibbon) continue; // its corners: corners_, endCorners_
       t.corners.push_back(cornerVectors(i));
       if (g2) t.cornerTerms.push_back(kernels::gregoryCornerTerms(t.corners.back()));
     }
