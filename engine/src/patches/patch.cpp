@@ -41,7 +41,8 @@ template <> struct Numbers<double> {
 /// W = (x a + y b) / (x + y) over either number type; the corner limit
 /// (x = y = 0) is finite but irrelevant, because the caller multiplies W by a
 /// vanishing factor.
-template <class T> [[gnu::always_inline]] inline typename Numbers<T>::Point rationalTermOf(const Vec3 &a, const Vec3 &b, T x, T y) {
+template <class T>
+[[gnu::always_inline]] inline typename Numbers<T>::Point rationalTermOf(const Vec3 &a, const Vec3 &b, T x, T y) {
   const T sum = x + y;
   if (Numbers<T>::value(sum) == 0) return Numbers<T>::constant((a + b) * 0.5);
   return (x / sum) * a + (y / sum) * b;
@@ -49,7 +50,8 @@ template <class T> [[gnu::always_inline]] inline typename Numbers<T>::Point rati
 
 /// gregoryCorrection over either number type.
 template <class T>
-[[gnu::always_inline]] inline typename Numbers<T>::Point gregoryCorrectionOf(const CornerData &c, T s, T t, T gs, T gt) {
+[[gnu::always_inline]] inline typename Numbers<T>::Point gregoryCorrectionOf(const CornerData &c, T s, T t, T gs,
+                                                                             T gt) {
   const T s2 = s * s, t2 = t * t;
   typename Numbers<T>::Point q = Numbers<T>::constant(c.a00);
   q += gs * rationalTermOf(c.a10, c.b10, s, t2);
@@ -350,7 +352,8 @@ void Patch::compositeRibbonBatch(std::size_t count, const T *const *s, const T *
         }
         double *values[6], *derivatives[6];
         for (int c = 0; c < 6; ++c)
-          values[c] = array(i, kPerRibbon * r + c), derivatives[c] = slopes ? array(i, kPerRibbon * r + 6 + c) : nullptr;
+          values[c] = array(i, kPerRibbon * r + c),
+          derivatives[c] = slopes ? array(i, kPerRibbon * r + 6 + c) : nullptr;
         t.sides[ribbon[r]].evaluate(m, at, values, slopes ? derivatives : nullptr);
       }
     }

@@ -65,7 +65,13 @@ template <class T> struct CompositeInputs {
       s[i] = &storage[(3 * i) * count], d[i] = &storage[(3 * i + 1) * count], b[i] = &storage[(3 * i + 2) * count];
     for (int i = 0; i < n; ++i)
       for (std::size_t k = 0; k < count; ++k)
-        s[i][k] = value(i, k, 0), d[i][k] = value(i, k, 1), b[i][k] = value(i, k, 2) + value((i + 1) % n, k, 2);
+        s[i][k] = value(i, k, 0), d[i][k] = value(i, k, 1), b[i][k] = value(i, k, 2);
+    // b_i = q_i + q_{i+1} in place, each q read once (q_0 kept for the last side).
+    for (std::size_t k = 0; k < count; ++k) {
+      const T first = b[0][k];
+      for (int i = 0; i + 1 < n; ++i) b[i][k] += b[i + 1][k];
+      b[n - 1][k] += first;
+    }
   }
   /// f(k, s, d, b) with every side's values at sample k, for each sample.
   template <class F> void eachSample(int n, std::size_t count, const F &f) const {
