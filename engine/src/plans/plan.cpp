@@ -43,8 +43,9 @@ EvaluationPlan::EvaluationPlan(const PlanKey &key) : key_(key) {
   rotation_.resize(static_cast<std::size_t>(n) * count);
   // The tessellator's pattern (tessellate.cpp), with the same arithmetic so
   // that the sample positions are the same doubles.
-  const std::size_t perTriangle = static_cast<std::size_t>((r - 1) * (r - 2) / 2);
-  const std::size_t interiorBase = 1 + static_cast<std::size_t>(n) * (r - 1);
+  perTriangle_ = static_cast<std::size_t>((r - 1) * (r - 2) / 2);
+  interiorBase_ = 1 + static_cast<std::size_t>(n) * (r - 1);
+  const std::size_t perTriangle = perTriangle_, interiorBase = interiorBase_;
   auto spoke = [&](int i, int k) { return 1 + static_cast<std::size_t>(((i % n + n) % n) * (r - 1) + (k - 1)); };
   samples_[0] = {0, 0};
   for (int i = 0; i < n; ++i) rotation_[static_cast<std::size_t>(i) * count] = 0;
@@ -165,11 +166,11 @@ void EvaluationPlan::sidesAndBlends(int i, std::size_t first, std::size_t count,
   // Within one centre–side triangle interior the rotation is a shift by
   // whole triangles (the constructor's layout): plain loads of consecutive
   // samples, which the compiler vectorizes, and no reads of rotation_.
-  const int n = key_.sides, r = key_.resolution;
-  const std::size_t interiorBase = 1 + static_cast<std::size_t>(n) * (r - 1);
-  const std::size_t perTriangle = static_cast<std::size_t>((r - 1) * (r - 2) / 2);
-  const std::size_t triangle = first >= interiorBase ? (first - interiorBase) / perTriangle : 0;
-  if (first >= interiorBase && first + count <= interiorBase + (triangle + 1) * perTriangle) {
+  const int n = key_.sides;
+  const std::size_t interiorBase = interiorBase_, perTriangle = perTriangle_;
+  const bool interior = first >= interiorBase && perTriangle > 0;
+  const std::size_t triangle = interior ? (first - interiorBase) / perTriangle : 0;
+  if (interior && first + count <= interiorBase + (triangle + 1) * perTriangle) {
     const std::size_t local = first - interiorBase - triangle * perTriangle;
     const std::size_t rotated = interiorBase + ((triangle + n - i) % n) * perTriangle + local;
     const Dual *x = sides + (perSide_ ? static_cast<std::size_t>(i) * size() + first : rotated);
@@ -199,9 +200,8 @@ void EvaluationPlan::sidesAndBlends(int i, std::size_t first, std::size_t count,
 std::vector<std::pair<std::size_t, std::size_t>> EvaluationPlan::ranges(std::size_t maxCount) const {
   // The layout of the constructor: centre and spokes, then n equal triangle
   // interiors that the rotations permute as wholes, sample for sample.
-  const int n = key_.sides, r = key_.resolution;
-  const std::size_t interiorBase = 1 + static_cast<std::size_t>(n) * (r - 1);
-  const std::size_t perTriangle = static_cast<std::size_t>((r - 1) * (r - 2) / 2);
+  const int n = key_.sides;
+  const std::size_t interiorBase = interiorBase_, perTriangle = perTriangle_;
   std::vector<std::pair<std::size_t, std::size_t>> out;
   for (std::size_t k = 0; k < interiorBase; k += maxCount) out.push_back({k, std::min(maxCount, interiorBase - k)});
   for (std::size_t q = 0; q < perTriangle; q += maxCount)

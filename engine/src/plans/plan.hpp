@@ -87,6 +87,9 @@ private:
   std::vector<double> sideValues_, blendValues_;
   std::vector<double> cos_, sin_;
   bool perSide_ = false;
+  /// The layout: centre and spokes below interiorBase_, then n centre–side
+  /// triangle interiors of perTriangle_ samples each.
+  std::size_t interiorBase_ = 0, perTriangle_ = 0;
 };
 
 /// The process-wide plan cache: concurrent lookups, one build per key (later
