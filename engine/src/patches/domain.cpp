@@ -75,6 +75,15 @@ kernels::SweepFrame RegularDomain::sweepFrame(int i) const {
   return f;
 }
 
+namespace {
+/// |F| at an end of [0, 1] within which that end counts as a root (a point on
+/// a neighbouring side may show no sign change after rounding); the kernels'
+/// solvers use the same bound.
+double sweepEndTolerance(double x, double y, const Vec2 &a, const Vec2 &b) {
+  return 1e-13 * (1 + std::abs(x) + std::abs(y)) * (norm(a) + norm(b));
+}
+} // namespace
+
 RegularDomain::SweepParameters RegularDomain::hermiteSweep(int i, Dual u, Dual v, bool quintic) const {
   // Triangles keep the grid solver: their sweeplines cross near the
   // opposite corner (see Sweepline), where a point lies on several of them
@@ -82,14 +91,13 @@ RegularDomain::SweepParameters RegularDomain::hermiteSweep(int i, Dual u, Dual v
   if (quintic || sides() == 3) return hermiteSweepByGrid(i, u, v, quintic);
   Dual x, y;
   sideFrame(i, u, v, x, y);
-  // Points on the domain's boundary (side i, or sides i ± 1 where the root is
-  // an end of [0, 1]) are the kernel's uncertifiable cases, which its robust
+  // Points on sides i ± 1, whose root is an end of [0, 1] (F within the end
+  // tolerance there), are the kernel's uncertifiable cases, which its robust
   // solver would take: the grid solver settles them for a fraction of that.
   const Vec2 e = corner(i + 1) - corner(i);
   const Vec2 a = inFrame(e, corner(i - 1) - corner(i)), b = inFrame(e, corner(i + 2) - corner(i + 1));
-  const double atStart = x.v * a.y - y.v * a.x, atEnd = (x.v - 1) * b.y - y.v * b.x; // F(0), F(1)
-  const double tolerance = 1e-12 * (1 + std::abs(x.v) + std::abs(y.v)) * (norm(a) + norm(b));
-  if (y.v <= tolerance || std::abs(atStart) <= tolerance || std::abs(atEnd) <= tolerance)
+  const double tolerance = sweepEndTolerance(x.v, y.v, a, b);
+  if (std::abs(x.v * a.y - y.v * a.x) <= tolerance || std::abs((x.v - 1) * b.y - y.v * b.x) <= tolerance) // F(0), F(1)
     return hermiteSweepByGrid(i, u, v);
   double root, distance;
   kernels::hermiteSweepRoots(1, sweepFrame(i), &x.v, &y.v, &root, &distance, kernels::kScalarReference);
@@ -140,7 +148,7 @@ RegularDomain::SweepParameters RegularDomain::hermiteSweepByGrid(int i, Dual u, 
   // A point on side i−1 or i+1 has its root exactly at an end of [0, 1],
   // where rounding may leave F a hair off zero with no sign change: accept
   // the ends within a rounding tolerance.
-  const double tolerance = 1e-13 * (1 + std::abs(px) + std::abs(py)) * (norm(a) + norm(b));
+  const double tolerance = sweepEndTolerance(px, py, a, b);
   if (std::abs(f0) <= tolerance) consider(0.0);
   if (std::abs(F(1.0)) <= tolerance) consider(1.0);
   for (int k = 1; k <= kGrid; ++k) {
