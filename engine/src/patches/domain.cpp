@@ -10,6 +10,14 @@
 namespace curvenet {
 inline namespace v1 {
 
+namespace {
+// Direction of a domain vector in side i's frame (side length 1).
+Vec2 inFrame(const Vec2 &e, const Vec2 &d) {
+  const double l2 = dot(e, e);
+  return {dot(d, e) / l2, cross(e, d) / l2};
+}
+} // namespace
+
 RegularDomain::RegularDomain(int sides) : n_(sides) {
   CURVENET_CHECK(sides >= 3, "domain needs at least 3 sides, got " + std::to_string(sides));
   // Corner 0 at angle −π/2 − π/n puts side 0 horizontal at the bottom.
@@ -17,6 +25,18 @@ RegularDomain::RegularDomain(int sides) : n_(sides) {
   for (int i = 0; i < n_; ++i) {
     const double a = start + 2 * std::numbers::pi * i / n_;
     corners_.push_back({std::cos(a), std::sin(a)});
+  }
+  // Every side sees its neighbours alike (the polygon is regular): one frame
+  // serves all sides, as the plans' rotations assume.
+  const Vec2 e = corner(1) - corner(0);
+  a_ = inFrame(e, corner(-1) - corner(0)), b_ = inFrame(e, corner(2) - corner(1));
+  frame_ = {a_.x, a_.y, b_.x, b_.y};
+  const double det = cross(a_, b_);
+  if (std::abs(det) < 1e-12) {
+    frame_.parallel = true;
+  } else {
+    const double alpha = cross(Vec2{1, 0}, b_) / det;
+    frame_.apexX = a_.x * alpha, frame_.apexY = a_.y * alpha;
   }
 }
 
@@ -37,14 +57,6 @@ Dual RegularDomain::perpendicularDistance(int i, Dual u, Dual v) const {
 }
 
 namespace {
-// Direction of a domain vector in side i's frame (side length 1).
-Vec2 inFrame(const Vec2 &e, const Vec2 &d) {
-  const double l2 = dot(e, e);
-  return {dot(d, e) / l2, cross(e, d) / l2};
-}
-} // namespace
-
-namespace {
 /// The Hermite weight of eq. 20 and its first two derivatives: cubic
 /// H(s) = 2s³ − 3s² + 1, or the quintic 1 − 10s³ + 15s⁴ − 6s⁵ of the footnote.
 std::array<double, 3> hermiteWeight(double s, bool quintic) {
@@ -59,20 +71,6 @@ Dual RegularDomain::radialSideParameter(int i, Dual u, Dual v) const {
   Dual x, y;
   sideFrame(i, u, v, x, y);
   return radialSideParameter(sweepFrame(i), x, y);
-}
-
-kernels::SweepFrame RegularDomain::sweepFrame(int i) const {
-  const Vec2 e = corner(i + 1) - corner(i);
-  const Vec2 a = inFrame(e, corner(i - 1) - corner(i)), b = inFrame(e, corner(i + 2) - corner(i + 1));
-  kernels::SweepFrame f{a.x, a.y, b.x, b.y};
-  const double det = cross(a, b);
-  if (std::abs(det) < 1e-12) {
-    f.parallel = true;
-  } else {
-    const double alpha = cross(Vec2{1, 0}, b) / det;
-    f.apexX = a.x * alpha, f.apexY = a.y * alpha;
-  }
-  return f;
 }
 
 namespace {
@@ -94,8 +92,7 @@ RegularDomain::SweepParameters RegularDomain::hermiteSweep(int i, Dual u, Dual v
   // Points on sides i ± 1, whose root is an end of [0, 1] (F within the end
   // tolerance there), are the kernel's uncertifiable cases, which its robust
   // solver would take: the grid solver settles them for a fraction of that.
-  const Vec2 e = corner(i + 1) - corner(i);
-  const Vec2 a = inFrame(e, corner(i - 1) - corner(i)), b = inFrame(e, corner(i + 2) - corner(i + 1));
+  const Vec2 &a = a_, &b = b_;
   const double tolerance = sweepEndTolerance(x.v, y.v, a, b);
   if (std::abs(x.v * a.y - y.v * a.x) <= tolerance || std::abs((x.v - 1) * b.y - y.v * b.x) <= tolerance) // F(0), F(1)
     return hermiteSweepByGrid(i, u, v);
@@ -104,12 +101,41 @@ RegularDomain::SweepParameters RegularDomain::hermiteSweep(int i, Dual u, Dual v
   return hermiteSweepFromRoot(i, u, v, root);
 }
 
+void RegularDomain::hermiteSweepSides(Dual u, Dual v, bool quintic, std::span<Dual> s) const {
+  constexpr int kMaxBatch = 16;
+  if (quintic || n_ == 3 || n_ > kMaxBatch) {
+    for (int i = 0; i < n_; ++i) s[i] = hermiteSweep(i, u, v, quintic).s;
+    return;
+  }
+  // The sides hermiteSweep would give the kernel, gathered; the end-root
+  // cases to the grid solver as there.
+  static const std::size_t lanes = kernels::bestWidth().lanes;
+  std::array<double, kMaxBatch> x, y, root, distance;
+  std::array<int, kMaxBatch> side;
+  std::size_t count = 0;
+  for (int i = 0; i < n_; ++i) {
+    Dual fx, fy;
+    sideFrame(i, u, v, fx, fy);
+    const double tolerance = sweepEndTolerance(fx.v, fy.v, a_, b_);
+    if (std::abs(fx.v * a_.y - fy.v * a_.x) <= tolerance || std::abs((fx.v - 1) * b_.y - fy.v * b_.x) <= tolerance) {
+      s[i] = hermiteSweepByGrid(i, u, v).s;
+      continue;
+    }
+    x[count] = fx.v, y[count] = fy.v, side[count++] = i;
+  }
+  if (count == 0) return;
+  // Whole vectors: the lanes past the sides repeat the first side's point.
+  std::size_t padded = std::min<std::size_t>((count + lanes - 1) / lanes * lanes, kMaxBatch);
+  if (padded < count) padded = count;
+  for (std::size_t k = count; k < padded; ++k) x[k] = x[0], y[k] = y[0];
+  kernels::hermiteSweepRoots(padded, frame_, x.data(), y.data(), root.data(), distance.data());
+  for (std::size_t k = 0; k < count; ++k) s[side[k]] = hermiteSweepFromRoot(side[k], u, v, root[k]).s;
+}
+
 RegularDomain::SweepParameters RegularDomain::hermiteSweepByGrid(int i, Dual u, Dual v, bool quintic) const {
   Dual x, y;
   sideFrame(i, u, v, x, y);
-  const Vec2 e = corner(i + 1) - corner(i);
-  const Vec2 a = inFrame(e, corner(i - 1) - corner(i));
-  const Vec2 b = inFrame(e, corner(i + 2) - corner(i + 1));
+  const Vec2 &a = a_, &b = b_;
   auto H = [quintic](double s) { return hermiteWeight(s, quintic); };
   // w(s) = a H(s) + b H(1 − s) and its derivative.
   auto w = [&](double s, Vec2 &value, Vec2 &slope) {
@@ -173,9 +199,7 @@ RegularDomain::SweepParameters RegularDomain::hermiteSweepFromRoot(int i, Dual u
                                                                    bool quintic) const {
   Dual x, y;
   sideFrame(i, u, v, x, y);
-  const Vec2 e = corner(i + 1) - corner(i);
-  const Vec2 a = inFrame(e, corner(i - 1) - corner(i));
-  const Vec2 b = inFrame(e, corner(i + 2) - corner(i + 1));
+  const Vec2 &a = a_, &b = b_;
   auto H = [quintic](double s) { return hermiteWeight(s, quintic); };
   const double px = x.v, py = y.v;
   // Implicit differentiation of F(s; x, y) = 0.
@@ -200,8 +224,7 @@ Dual2 RegularDomain::hermiteSweepSide2(int i, Dual2 u, Dual2 v, bool quintic) co
   const double l2 = dot(e, e);
   const Dual2 qx = u - p.x, qy = v - p.y;
   const Dual2 x = (qx * e.x + qy * e.y) * (1.0 / l2), y = (qy * e.x - qx * e.y) * (1.0 / l2);
-  const Vec2 a = inFrame(e, corner(i - 1) - corner(i));
-  const Vec2 b = inFrame(e, corner(i + 2) - corner(i + 1));
+  const Vec2 &a = a_, &b = b_;
   const double s0 = hermiteSweep(i, Dual(u.v), Dual(v.v), quintic).s.v;
   auto H = [quintic](double s) -> std::array<double, 3> {
     if (quintic)
@@ -234,9 +257,7 @@ Dual2 RegularDomain::hermiteSweepSide2(int i, Dual2 u, Dual2 v, bool quintic) co
 Dual RegularDomain::linearSweepSideParameter(int i, Dual u, Dual v) const {
   Dual x, y;
   sideFrame(i, u, v, x, y);
-  const Vec2 e = corner(i + 1) - corner(i);
-  const Vec2 a = inFrame(e, corner(i - 1) - corner(i));
-  const Vec2 b = inFrame(e, corner(i + 2) - corner(i + 1));
+  const Vec2 &a = a_, &b = b_;
   const Vec2 c = b - a;
   // (x, y) on the line from (s, 0) to a + s (1 + b − a): cross(E(s), X − A(s)) = 0,
   // i.e. (a_x y − a_y x) + s (a_y + c_x y − c_y x) + s² c_y = 0. In a regular

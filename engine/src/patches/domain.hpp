@@ -54,13 +54,18 @@ public:
   /// Newton, the robust solver where the certificate fails); the quintic
   /// sweep's, and a triangle's, from hermiteSweepByGrid.
   SweepParameters hermiteSweep(int i, Dual u, Dual v, bool quintic = false) const;
+  /// hermiteSweep's s_i for every side at once (s holds sides() entries):
+  /// the cubic sweeps' roots in one batch of the kernel solver, which fills
+  /// its vector lanes with the sides instead of solving them one by one.
+  void hermiteSweepSides(Dual u, Dual v, bool quintic, std::span<Dual> s) const;
   /// The same by the engine's own scalar solver, independent of the kernels:
   /// sign changes of the quartic on a 64-cell grid refined by bisection, with
   /// the kernels' selection rule (about ten times the kernel's cost).
   SweepParameters hermiteSweepByGrid(int i, Dual u, Dual v, bool quintic = false) const;
   /// Side i's sweep constants for the batched kernels (kernels::SweepFrame):
   /// the neighbouring sides' directions in its frame and the radial apex.
-  kernels::SweepFrame sweepFrame(int i) const;
+  /// The same for every side of a regular domain.
+  const kernels::SweepFrame &sweepFrame(int) const { return frame_; }
   /// hermiteSweep's result for a root found elsewhere (the batched solver of
   /// curvenet::kernels): s_i = root with its derivatives, and d_i.
   SweepParameters hermiteSweepFromRoot(int i, Dual u, Dual v, double root, bool quintic = false) const;
@@ -105,6 +110,9 @@ public:
 private:
   int n_;
   std::vector<Vec2> corners_;
+  /// The neighbouring sides' directions in a side's frame (sweepFrame's a, b).
+  Vec2 a_, b_;
+  kernels::SweepFrame frame_;
 };
 
 } // namespace v1

@@ -45,7 +45,8 @@ template <class T>
 [[gnu::always_inline]] inline typename Numbers<T>::Point rationalTermOf(const Vec3 &a, const Vec3 &b, T x, T y) {
   const T sum = x + y;
   if (Numbers<T>::value(sum) == 0) return Numbers<T>::constant((a + b) * 0.5);
-  return (x / sum) * a + (y / sum) * b;
+  // b + x / (x + y) · (a − b): one division and one scaled vector.
+  return Numbers<T>::constant(b) + (x / sum) * (a - b);
 }
 
 /// gregoryCorrection over either number type.
@@ -138,6 +139,8 @@ Patch::Patch(std::vector<LinearRibbon> ribbons, const SurfaceOptions &options, s
     const RibbonJet &prevEnd = ends[domain_.wrap(i - 1)], &nextStart = starts[domain_.wrap(i + 1)];
     corners_.push_back({start.P, prevEnd.T, -prevEnd.dP, -prevEnd.dT, start.dP, start.T, start.dT});
     endCorners_.push_back({nextStart.P, nextStart.T, nextStart.dP, nextStart.dT, -end.dP, end.T, -end.dT});
+    if (options_.scheme == Scheme::GregoryG2)
+      corners2_.push_back(cornerData2(parabolic_[domain_.wrap(i - 1)].end(), parabolic_[i].start()));
   }
 }
 
@@ -167,10 +170,10 @@ DualVec3 Patch::gregory(Dual u, Dual v) const {
   const int n = domain_.sides();
   std::array<Dual, kMaxSides> s, distance;
   std::array<RibbonJet, kMaxSides> jet;
+  if (options_.sweepline != Sweepline::Radial)
+    domain_.hermiteSweepSides(u, v, options_.sweepline == Sweepline::QuinticHermite, s);
   for (int i = 0; i < n; ++i) {
-    s[i] = options_.sweepline == Sweepline::Radial
-               ? domain_.radialSideParameter(i, u, v)
-               : domain_.hermiteSweep(i, u, v, options_.sweepline == Sweepline::QuinticHermite).s;
+    if (options_.sweepline == Sweepline::Radial) s[i] = domain_.radialSideParameter(i, u, v);
     distance[i] = domain_.perpendicularDistance(i, u, v);
     jet[i] = ribbons_[i].at(ribbons_[i].snap(std::clamp(s[i].v, 0.0, 1.0)));
   }
@@ -219,9 +222,8 @@ Dual2Vec3 Patch::evaluateSecondOrder(double uValue, double vValue) const {
     if (b.isZero()) continue;
     const int prev = domain_.wrap(i - 1);
     const Dual2 si = s[i], ti = Dual2(1.0) - s[prev];
-    const CornerData2 corner = cornerData2(parabolic_[prev].end(), parabolic_[i].start());
     const Dual2Vec3 interpolant =
-        ribbonAt2(jet[prev], s[prev], si) + ribbonAt2(jet[i], si, ti) - gregoryCorrection2Second(corner, si, ti);
+        ribbonAt2(jet[prev], s[prev], si) + ribbonAt2(jet[i], si, ti) - gregoryCorrection2Second(corners2_[i], si, ti);
     result += b * interpolant;
   }
   return result;
@@ -234,8 +236,8 @@ DualVec3 Patch::gregoryG2(Dual u, Dual v) const {
   const bool quintic = options_.sweepline == Sweepline::QuinticHermite;
   std::array<Dual, kMaxSides> s, cubed;
   std::array<ParabolicJet, kMaxSides> jet;
+  domain_.hermiteSweepSides(u, v, quintic, s);
   for (int i = 0; i < n; ++i) {
-    s[i] = domain_.hermiteSweep(i, u, v, quintic).s;
     const Dual distance = domain_.perpendicularDistance(i, u, v);
     cubed[i] = distance * distance * distance;
     jet[i] = parabolic_[i].at(ribbons_[i].snap(std::clamp(s[i].v, 0.0, 1.0)));
@@ -250,10 +252,9 @@ DualVec3 Patch::gregoryG2(Dual u, Dual v) const {
     if (b.isZero()) continue; // far corner: the interpolant may be undefined there
     const int prev = domain_.wrap(i - 1);
     const Dual si = s[i], ti = Dual(1.0) - s[prev];
-    const CornerData2 corner = cornerData2(parabolic_[prev].end(), parabolic_[i].start());
     // I_{i,i−1} = R_{i−1}(s_{i−1}, s_i) + R_i(s_i, 1 − s_{i−1}) − Q (eq. 17).
     const DualVec3 interpolant =
-        ribbonAt(jet[prev], s[prev], si) + ribbonAt(jet[i], si, ti) - gregoryCorrection2(corner, si, ti);
+        ribbonAt(jet[prev], s[prev], si) + ribbonAt(jet[i], si, ti) - gregoryCorrection2(corners2_[i], si, ti);
     result += b * interpolant;
   }
   return result;

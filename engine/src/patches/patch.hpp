@@ -48,6 +48,13 @@ struct PositionSink {
   }
 };
 
+/// Corner data of two parabolic ribbons for the G² correction patch:
+/// a[p][q] = ∂_s^p ∂_t^q R_{i−1}(1 − t, s), b[p][q] = ∂_s^p ∂_t^q R_i(s, t)
+/// at (0, 0), p, q ∈ {0, 1, 2} (DESIGN.md §3).
+struct CornerData2 {
+  Vec3 a[3][3], b[3][3];
+};
+
 /// Corner data of two ribbons meeting at a corner, in the corner's local
 /// coordinates (s along the first side, t across it): a_pq from the ribbon
 /// that must be matched across t = 0, b_pq from the one matched across s = 0,
@@ -169,6 +176,9 @@ private:
   /// endCorners_[i] at corner i + 1 seen from side i, in (σ = 1 − s_i, d_i)
   /// (R_{i+1} matched across d = 0, R_i across σ = 0; the CR right corner).
   std::vector<CornerData> corners_, endCorners_;
+  /// G²: the parabolic ribbons' corner data (cornerData2 of the ends meeting
+  /// at corner i), computed once instead of at every point.
+  std::vector<CornerData2> corners2_;
   SurfaceOptions options_;
 };
 
@@ -184,12 +194,6 @@ struct Patch::TableCache {
 /// term carries s^p t^q, so at the corner itself it is the corner point.
 DualVec3 gregoryCorrection(const CornerData &c, Dual s, Dual t, Dual gs, Dual gt);
 
-/// Corner data of two parabolic ribbons for the G² correction patch:
-/// a[p][q] = ∂_s^p ∂_t^q R_{i−1}(1 − t, s), b[p][q] = ∂_s^p ∂_t^q R_i(s, t)
-/// at (0, 0), p, q ∈ {0, 1, 2} (DESIGN.md §3).
-struct CornerData2 {
-  Vec3 a[3][3], b[3][3];
-};
 
 /// The nine-term correction patch of paper 000 eq. 22:
 /// Q = Σ_{p,q ≤ 2} s^p t^q / (p! q!) W_pq with

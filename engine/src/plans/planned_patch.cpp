@@ -86,19 +86,10 @@ template <class T> struct CompositeInputs {
 } // namespace
 
 kernels::GregoryCorner Patch::cornerVectors(int i) const {
-  const int prev = domain_.wrap(i - 1);
   std::array<Vec3, kMaxCornerVectors> vectors{};
   if (options_.scheme == Scheme::GregoryG2) {
-    const SideEndData &end = parabolic_[prev].end(), &start = parabolic_[i].start();
-    // The corner data of cornerData2 (patch.cpp): a from R_{i−1}(1 − t, s), b from R_i(s, t).
-    Vec3 a[3][3], b[3][3];
-    a[0][0] = start.P;
-    a[1][0] = end.T, a[2][0] = end.C;
-    a[0][1] = -end.dP, a[1][1] = -end.dT, a[2][1] = -end.dC;
-    a[0][2] = end.ddP, a[1][2] = end.ddT, a[2][2] = end.ddC;
-    b[1][0] = start.dP, b[2][0] = start.ddP;
-    b[0][1] = start.T, b[1][1] = start.dT, b[2][1] = start.ddT;
-    b[0][2] = start.C, b[1][2] = start.dC, b[2][2] = start.ddC;
+    const CornerData2 &c = corners2_[i];
+    const auto &a = c.a, &b = c.b;
     int used = 0;
     vectors[used++] = a[0][0];
     for (int p = 0; p <= 2; ++p)
