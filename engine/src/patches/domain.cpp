@@ -26,6 +26,10 @@ RegularDomain::RegularDomain(int sides) : n_(sides) {
     const double a = start + 2 * std::numbers::pi * i / n_;
     corners_.push_back({std::cos(a), std::sin(a)});
   }
+  for (int i = 0; i < n_; ++i) {
+    const Vec2 e = corner(i + 1) - corner(i);
+    sideAxes_.push_back({corner(i), e / dot(e, e)});
+  }
   // Every side sees its neighbours alike (the polygon is regular): one frame
   // serves all sides, as the plans' rotations assume.
   const Vec2 e = corner(1) - corner(0);
@@ -41,20 +45,6 @@ RegularDomain::RegularDomain(int sides) : n_(sides) {
 }
 
 Vec2 RegularDomain::pointOnSide(int i, double s) const { return corner(i) + (corner(i + 1) - corner(i)) * s; }
-
-void RegularDomain::sideFrame(int i, Dual u, Dual v, Dual &x, Dual &y) const {
-  const Vec2 p = corner(i), e = corner(i + 1) - corner(i);
-  const double l2 = dot(e, e);
-  const Dual qx = u - p.x, qy = v - p.y;
-  x = (qx * e.x + qy * e.y) * (1.0 / l2);
-  y = (qy * e.x - qx * e.y) * (1.0 / l2);
-}
-
-Dual RegularDomain::perpendicularDistance(int i, Dual u, Dual v) const {
-  Dual x, y;
-  sideFrame(i, u, v, x, y);
-  return y;
-}
 
 namespace {
 /// The Hermite weight of eq. 20 and its first two derivatives: cubic

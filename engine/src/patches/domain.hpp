@@ -23,13 +23,23 @@ public:
 
   int sides() const { return n_; }
   const Vec2 &corner(int i) const { return corners_[wrap(i)]; }
-  int wrap(int i) const { return ((i % n_) + n_) % n_; }
+  int wrap(int i) const {
+    // Callers mostly step one side around (i ± 1, i + 2): no division then.
+    if (i >= 0 && i < n_) return i;
+    if (i >= n_ && i < 2 * n_) return i - n_;
+    if (i < 0 && i >= -n_) return i + n_;
+    return ((i % n_) + n_) % n_;
+  }
   /// Point at fraction s ∈ [0, 1] along side i.
   Vec2 pointOnSide(int i, double s) const;
 
   /// Perpendicular distance to the line of side i, in units of the side
   /// length (0 on the side, positive inside): the Δ_i of the Gregory blends.
-  Dual perpendicularDistance(int i, Dual u, Dual v) const;
+  Dual perpendicularDistance(int i, Dual u, Dual v) const {
+    Dual x, y;
+    sideFrame(i, u, v, x, y);
+    return y;
+  }
 
   /// Radial sweep [CG84]: s_i along the line through the intersection of the
   /// extended sides i−1 and i+1 (a parallel sweep when they do not meet).
@@ -105,11 +115,21 @@ public:
 
   /// Side i's frame: maps a domain point to (x, y) where side i is (0,0)→(1,0)
   /// and the domain lies at y > 0.
-  void sideFrame(int i, Dual u, Dual v, Dual &x, Dual &y) const;
+  void sideFrame(int i, Dual u, Dual v, Dual &x, Dual &y) const {
+    const SideAxes &f = sideAxes_[static_cast<std::size_t>(wrap(i))];
+    const Dual qx = u - f.origin.x, qy = v - f.origin.y;
+    x = qx * f.axis.x + qy * f.axis.y;
+    y = qy * f.axis.x - qx * f.axis.y;
+  }
 
 private:
   int n_;
   std::vector<Vec2> corners_;
+  /// Side i's frame (sideFrame): its start corner and e / |e|², e = p_{i+1} − p_i.
+  struct SideAxes {
+    Vec2 origin, axis;
+  };
+  std::vector<SideAxes> sideAxes_;
   /// The neighbouring sides' directions in a side's frame (sweepFrame's a, b).
   Vec2 a_, b_;
   kernels::SweepFrame frame_;
