@@ -72,6 +72,14 @@ double sweepEndTolerance(double x, double y, const Vec2 &a, const Vec2 &b) {
 }
 } // namespace
 
+bool RegularDomain::rootAtSweepEnd(double x, double y) const {
+  // Points on sides i ± 1, whose root is an end of [0, 1] (F within the end
+  // tolerance there), are the kernel's uncertifiable cases, which its robust
+  // solver would take: the grid solver settles them for a fraction of that.
+  const double tolerance = sweepEndTolerance(x, y, a_, b_);
+  return std::abs(x * a_.y - y * a_.x) <= tolerance || std::abs((x - 1) * b_.y - y * b_.x) <= tolerance; // F(0), F(1)
+}
+
 RegularDomain::SweepParameters RegularDomain::hermiteSweep(int i, Dual u, Dual v, bool quintic) const {
   // Triangles keep the grid solver: their sweeplines cross near the
   // opposite corner (see Sweepline), where a point lies on several of them
@@ -79,13 +87,7 @@ RegularDomain::SweepParameters RegularDomain::hermiteSweep(int i, Dual u, Dual v
   if (quintic || sides() == 3) return hermiteSweepByGrid(i, u, v, quintic);
   Dual x, y;
   sideFrame(i, u, v, x, y);
-  // Points on sides i ± 1, whose root is an end of [0, 1] (F within the end
-  // tolerance there), are the kernel's uncertifiable cases, which its robust
-  // solver would take: the grid solver settles them for a fraction of that.
-  const Vec2 &a = a_, &b = b_;
-  const double tolerance = sweepEndTolerance(x.v, y.v, a, b);
-  if (std::abs(x.v * a.y - y.v * a.x) <= tolerance || std::abs((x.v - 1) * b.y - y.v * b.x) <= tolerance) // F(0), F(1)
-    return hermiteSweepByGrid(i, u, v);
+  if (rootAtSweepEnd(x.v, y.v)) return hermiteSweepByGrid(i, u, v);
   double root, distance;
   kernels::hermiteSweepRoots(1, sweepFrame(i), &x.v, &y.v, &root, &distance, kernels::kScalarReference);
   return hermiteSweepFromRoot(i, u, v, root);
@@ -106,8 +108,7 @@ void RegularDomain::hermiteSweepSides(Dual u, Dual v, bool quintic, std::span<Du
   for (int i = 0; i < n_; ++i) {
     Dual fx, fy;
     sideFrame(i, u, v, fx, fy);
-    const double tolerance = sweepEndTolerance(fx.v, fy.v, a_, b_);
-    if (std::abs(fx.v * a_.y - fy.v * a_.x) <= tolerance || std::abs((fx.v - 1) * b_.y - fy.v * b_.x) <= tolerance) {
+    if (rootAtSweepEnd(fx.v, fy.v)) {
       s[i] = hermiteSweepByGrid(i, u, v).s;
       continue;
     }

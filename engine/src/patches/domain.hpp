@@ -123,6 +123,10 @@ public:
   }
 
 private:
+  /// A side-frame point (x, y) whose cubic sweep root is an end of [0, 1]:
+  /// the solver kernel cannot certify it, hermiteSweepByGrid takes it.
+  bool rootAtSweepEnd(double x, double y) const;
+
   int n_;
   std::vector<Vec2> corners_;
   /// Side i's frame (sideFrame): its start corner and e / |e|², e = p_{i+1} − p_i.
