@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cstring>
+#include <random>
 #include <set>
 #include <stdexcept>
 #include <thread>
@@ -56,6 +57,38 @@ TEST(EvaluationPlan, RotatedSideZeroDataIsEverySidesOwn) {
           const Dual distance = domain.perpendicularDistance(i, u, v), planDistance = plan.distance(i, k);
           ASSERT_NEAR(planDistance.v, distance.v, 1e-13);
           ASSERT_NEAR(planDistance.du, distance.du, 1e-12);
+        }
+      }
+    }
+}
+
+TEST(RegularDomain, AllSidesSweepsInOneBatchMatchTheIndependentSolver) {
+  // hermiteSweepSides (every side of a point in one kernel call, its lanes
+  // padded) against the grid solver side by side, on the resolution-9 plan
+  // samples (corners, sides, spokes, interiors) and on random interior
+  // points; values and gradients.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> coordinate(-1, 1);
+  for (int n = 3; n <= 8; ++n)
+    for (bool quintic : {false, true}) {
+      const RegularDomain domain(n);
+      const EvaluationPlan plan(planKey({Scheme::GregoryG2, Sweepline::Hermite}, n, 9));
+      std::vector<Vec2> points(plan.samples().begin(), plan.samples().end());
+      while (points.size() < 2000) {
+        const Vec2 p{coordinate(rng), coordinate(rng)};
+        bool inside = true;
+        for (int i = 0; i < n; ++i) inside = inside && cross(domain.corner(i + 1) - domain.corner(i), p - domain.corner(i)) > 0;
+        if (inside) points.push_back(p);
+      }
+      for (const Vec2 &p : points) {
+        const Dual u = Dual::u(p.x), v = Dual::vCoord(p.y);
+        std::array<Dual, 8> batched;
+        domain.hermiteSweepSides(u, v, quintic, batched);
+        for (int i = 0; i < n; ++i) {
+          const Dual direct = domain.hermiteSweepByGrid(i, u, v, quintic).s;
+          ASSERT_NEAR(batched[i].v, direct.v, 1e-12) << "n=" << n << " side " << i << " at " << p.x << ", " << p.y;
+          ASSERT_NEAR(batched[i].du, direct.du, 1e-9 * (1 + std::abs(direct.du)));
+          ASSERT_NEAR(batched[i].dv, direct.dv, 1e-9 * (1 + std::abs(direct.dv)));
         }
       }
     }
