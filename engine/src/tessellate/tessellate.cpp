@@ -268,16 +268,34 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
       mesh.positions[segmentSampleId(net, layout, static_cast<int>(e), j)] =
           net.segments()[e].curve.point(double(j) / layout.segmentIntervals[e]);
   }
-  std::vector<char> hasNormal(layout.vertexCount, 0);
-  for (int f = 0; f < faces; ++f)
-    for (const auto &row : rows[f])
-      for (const RowPoint &p : row)
-        if (!hasNormal[p.id]) {
-          hasNormal[p.id] = 1;
-          if (!wanted(f)) continue; // owned by a face kept as it was
-          mesh.normals[p.id] = surface.evaluate(f, p.domain).normal;
-          if (record) mesh.domainPoints[p.id] = {f, p.domain};
-        }
+  // Owners first (in face order), then the owners' normals in parallel:
+  // each point is evaluated by one fixed face, whatever the thread count.
+  struct BoundaryNormal {
+    std::uint32_t id;
+    int face;
+    Vec2 domain;
+  };
+  std::vector<BoundaryNormal> boundary;
+  {
+    std::vector<char> hasNormal(layout.vertexCount, 0);
+    for (int f = 0; f < faces; ++f)
+      for (const auto &row : rows[f])
+        for (const RowPoint &p : row)
+          if (!hasNormal[p.id]) {
+            hasNormal[p.id] = 1;
+            if (wanted(f)) boundary.push_back({p.id, f, p.domain}); // else owned by a face kept as it was
+          }
+  }
+  // A few microseconds a point (G²: two sweeps per point end on a side).
+  constexpr std::size_t kBoundaryGrain = 64;
+  parallel::parallelFor(tbb::blocked_range<std::size_t>(0, boundary.size(), kBoundaryGrain),
+                        [&](const tbb::blocked_range<std::size_t> &range) {
+                          for (std::size_t k = range.begin(); k < range.end(); ++k) {
+                            const BoundaryNormal &b = boundary[k];
+                            mesh.normals[b.id] = surface.evaluate(b.face, b.domain).normal;
+                            if (record) mesh.domainPoints[b.id] = {b.face, b.domain};
+                          }
+                        });
 
   // Face interiors through evaluation plans: the plans first (each distinct
   // key built once, itself in parallel), then tiles of samples in parallel.
@@ -309,69 +327,85 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
     });
   }
 
-  std::vector<std::vector<std::array<std::uint32_t, 3>>> triangles(faces);
-  parallel::parallelFor(0, faces, [&](int f) {
-    if (!wanted(f)) return;
+  // Triangles per fan sector (face f, side i): the sectors of a face are
+  // independent (their own interior samples, spokes by formula), so even a
+  // single face spreads over the threads; the mesh takes them in order.
+  std::vector<std::pair<int, int>> sectors;
+  for (int f = 0; f < faces; ++f)
+    if (wanted(f))
+      for (int i = 0; i < surface.domainSides(f); ++i) sectors.push_back({f, i});
+  std::vector<std::vector<std::array<std::uint32_t, 3>>> sectorTriangles(sectors.size());
+  parallel::parallelFor(std::size_t{0}, sectors.size(), [&](std::size_t item) {
+    const auto [f, i] = sectors[item];
     const int n = surface.domainSides(f);
     const std::uint32_t base = layout.faceBase[f];
     const std::uint32_t centre = base;
-    auto spoke = [&](int i, int k) { // level k ∈ [1, r−1] on the spoke from corner i to the centre
-      return base + 1 + static_cast<std::uint32_t>(((i % n + n) % n) * (r - 1) + (k - 1));
+    auto spoke = [&](int side, int k) { // level k ∈ [1, r−1] on the spoke from corner `side` to the centre
+      return base + 1 + static_cast<std::uint32_t>(((side % n + n) % n) * (r - 1) + (k - 1));
     };
     const std::uint32_t interiorBase = base + 1 + static_cast<std::uint32_t>(n * (r - 1));
     const std::uint32_t perTriangle = static_cast<std::uint32_t>((r - 1) * (r - 2) / 2);
+    std::size_t placed = 0;
     auto place = [&](std::uint32_t id, const Vec2 &uv) {
       if (planned) return; // evaluated through the plan above
       const SurfacePoint p = surface.evaluate(f, uv);
       mesh.positions[id] = p.point;
       mesh.normals[id] = p.normal;
       if (record) mesh.domainPoints[id] = {f, uv};
+      ++placed;
     };
-    place(centre, {0, 0});
-    auto &out = triangles[f];
-    out.reserve(static_cast<size_t>(n) * r * r);
-    for (int i = 0; i < n; ++i) {
-      const Vec2 p0 = surface.domainCorner(f, i), p1 = surface.domainCorner(f, i + 1);
-      std::vector<RowPoint> lower = rows[f][i], upper;
-      std::uint32_t offset = interiorBase + static_cast<std::uint32_t>(i) * perTriangle;
-      for (int k = 1; k <= r; ++k) {
-        upper.clear();
-        if (k == r) {
-          upper.push_back({centre, 0.0, {0, 0}});
-        } else {
-          const Vec2 a = p0 * (1.0 - double(k) / r), b = p1 * (1.0 - double(k) / r);
-          const int m = r - k;
-          for (int j = 0; j <= m; ++j) {
-            const std::uint32_t id = j == 0 ? spoke(i, k) : (j == m ? spoke(i + 1, k) : offset++);
-            const Vec2 uv = a + (b - a) * (double(j) / m);
-            if (j < m) place(id, uv); // the spoke at j = m belongs to the next fan triangle
-            upper.push_back({id, double(j) / m, uv});
-          }
+    if (i == 0) place(centre, {0, 0});
+    auto &out = sectorTriangles[item];
+    out.reserve(static_cast<size_t>(r) * r);
+    const Vec2 p0 = surface.domainCorner(f, i), p1 = surface.domainCorner(f, i + 1);
+    std::vector<RowPoint> lower = rows[f][i], upper;
+    std::uint32_t offset = interiorBase + static_cast<std::uint32_t>(i) * perTriangle;
+    for (int k = 1; k <= r; ++k) {
+      upper.clear();
+      if (k == r) {
+        upper.push_back({centre, 0.0, {0, 0}});
+      } else {
+        const Vec2 a = p0 * (1.0 - double(k) / r), b = p1 * (1.0 - double(k) / r);
+        const int m = r - k;
+        for (int j = 0; j <= m; ++j) {
+          const std::uint32_t id = j == 0 ? spoke(i, k) : (j == m ? spoke(i + 1, k) : offset++);
+          const Vec2 uv = a + (b - a) * (double(j) / m);
+          if (j < m) place(id, uv); // the spoke at j = m belongs to the next fan triangle
+          upper.push_back({id, double(j) / m, uv});
         }
-        zip(lower, upper, out);
-        std::swap(lower, upper);
       }
+      zip(lower, upper, out);
+      std::swap(lower, upper);
     }
-    if (!planned) progress.advance(faceInteriorCount(n, r));
+    if (placed) progress.advance(placed);
   });
-
+  // Each face's triangles are its sectors' in order (`sectors` lists a
+  // face's together); each sector is copied to its place in parallel.
+  std::vector<std::size_t> faceTriangles(faces, 0);
+  for (std::size_t item = 0; item < sectors.size(); ++item) faceTriangles[sectors[item].first] += sectorTriangles[item].size();
   if (only) {
     // The same topology gives every face the same triangle count; only the
     // zipping order along sides with T-nodes can move with the curves.
-    for (int f = 0; f < faces; ++f) {
-      if (!wanted(f)) continue;
-      const std::uint32_t start = mesh.faceTriangleStart[f];
-      CURVENET_CHECK(triangles[f].size() == mesh.faceTriangleStart[f + 1] - start,
-                     "face " + std::to_string(f) + " changed its triangle count");
-      std::copy(triangles[f].begin(), triangles[f].end(), mesh.triangles.begin() + start);
-    }
-    return;
+    for (int f = 0; f < faces; ++f)
+      if (wanted(f))
+        CURVENET_CHECK(faceTriangles[f] == mesh.faceTriangleStart[f + 1] - mesh.faceTriangleStart[f],
+                       "face " + std::to_string(f) + " changed its triangle count");
+  } else {
+    mesh.faceTriangleStart.assign(1, 0);
+    for (int f = 0; f < faces; ++f)
+      mesh.faceTriangleStart.push_back(mesh.faceTriangleStart.back() + static_cast<std::uint32_t>(faceTriangles[f]));
+    mesh.triangles.resize(mesh.faceTriangleStart.back());
   }
-  mesh.faceTriangleStart.push_back(0);
-  for (int f = 0; f < faces; ++f) {
-    mesh.triangles.insert(mesh.triangles.end(), triangles[f].begin(), triangles[f].end());
-    mesh.faceTriangleStart.push_back(static_cast<std::uint32_t>(mesh.triangles.size()));
+  std::vector<std::size_t> destination(sectors.size());
+  for (std::size_t item = 0; item < sectors.size(); ++item) {
+    const bool first = item == 0 || sectors[item - 1].first != sectors[item].first;
+    destination[item] = first ? mesh.faceTriangleStart[sectors[item].first]
+                              : destination[item - 1] + sectorTriangles[item - 1].size();
   }
+  parallel::parallelFor(std::size_t{0}, sectors.size(), [&](std::size_t item) {
+    std::copy(sectorTriangles[item].begin(), sectorTriangles[item].end(), mesh.triangles.begin() + destination[item]);
+  });
+  if (only) return;
   progress.finish();
 }
 } // namespace
