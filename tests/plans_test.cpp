@@ -77,7 +77,8 @@ TEST(RegularDomain, AllSidesSweepsInOneBatchMatchTheIndependentSolver) {
       while (points.size() < 2000) {
         const Vec2 p{coordinate(rng), coordinate(rng)};
         bool inside = true;
-        for (int i = 0; i < n; ++i) inside = inside && cross(domain.corner(i + 1) - domain.corner(i), p - domain.corner(i)) > 0;
+        for (int i = 0; i < n; ++i)
+          inside = inside && cross(domain.corner(i + 1) - domain.corner(i), p - domain.corner(i)) > 0;
         if (inside) points.push_back(p);
       }
       for (const Vec2 &p : points) {

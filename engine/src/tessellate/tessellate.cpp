@@ -336,7 +336,7 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
       for (int i = 0; i < surface.domainSides(f); ++i) sectors.push_back({f, i});
   std::vector<std::vector<std::array<std::uint32_t, 3>>> sectorTriangles(sectors.size());
   parallel::parallelFor(std::size_t{0}, sectors.size(), [&](std::size_t item) {
-    const auto [f, i] = sectors[item];
+    const int f = sectors[item].first, i = sectors[item].second; // plain names: the lambdas below capture f
     const int n = surface.domainSides(f);
     const std::uint32_t base = layout.faceBase[f];
     const std::uint32_t centre = base;
@@ -382,7 +382,8 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
   // Each face's triangles are its sectors' in order (`sectors` lists a
   // face's together); each sector is copied to its place in parallel.
   std::vector<std::size_t> faceTriangles(faces, 0);
-  for (std::size_t item = 0; item < sectors.size(); ++item) faceTriangles[sectors[item].first] += sectorTriangles[item].size();
+  for (std::size_t item = 0; item < sectors.size(); ++item)
+    faceTriangles[sectors[item].first] += sectorTriangles[item].size();
   if (only) {
     // The same topology gives every face the same triangle count; only the
     // zipping order along sides with T-nodes can move with the curves.
