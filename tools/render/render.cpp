@@ -23,6 +23,7 @@
 #include <unistd.h>
 
 #include "curvenet/error.hpp"
+#include "parallel/fork_join.hpp"
 
 namespace curvenet::render {
 
@@ -298,7 +299,7 @@ Image renderMesh(const Mesh &mesh, const RenderOptions &o, std::span<const doubl
 
   RTCScene rtcScene = scene->scene;
   ProgressCounter progress(o.progress, static_cast<std::uint64_t>(o.width) * static_cast<std::uint64_t>(o.height));
-  tbb::parallel_for(tbb::blocked_range2d<int>(0, o.height, 16, 0, o.width, 16), [&](const auto &tile) {
+  parallel::parallelFor(tbb::blocked_range2d<int>(0, o.height, 16, 0, o.width, 16), [&](const auto &tile) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The whole test suite under AddressSanitizer + UndefinedBehaviorSanitizer,
-# then the parallel stages (tessellation, plan cache, rendering) under
-# ThreadSanitizer. Separate build folders; incremental after the first run.
+# then the parallel stages (tessellation, plan cache, embedding batches, the
+# renderer's ray casting) under ThreadSanitizer. Separate build folders;
+# incremental after the first run.
 #   bash tools/scripts/sanitize.sh            # both
 #   bash tools/scripts/sanitize.sh address    # ASan + UBSan only
 #   bash tools/scripts/sanitize.sh thread     # TSan only
@@ -30,11 +31,12 @@ fi
 
 if [[ $which == all || $which == thread ]]; then
   dir=$repo/build-tsan
-  [ -f "$dir/CMakeCache.txt" ] || cmake -S "$repo" -B "$dir" -G Ninja "${flags[@]}" \
-    -DCURVENET_SANITIZE=thread -DCURVENET_BUILD_TOOLS=OFF
-  cmake --build "$dir" -j "$jobs" --target surface_test plans_test embed_test
+  # Configured every time: a folder from before the renderer joined keeps
+  # its tools switched off otherwise.
+  cmake -S "$repo" -B "$dir" -G Ninja "${flags[@]}" -DCURVENET_SANITIZE=thread -DCURVENET_BUILD_TOOLS=ON >/dev/null
+  cmake --build "$dir" -j "$jobs" --target surface_test plans_test embed_test render_test curvenet tsan_canary
   # TBB's own synchronization is not visible to TSan in the Debian build;
   # tests/tsan.supp lists those library frames, nothing of ours.
   TSAN_OPTIONS="halt_on_error=1 suppressions=$repo/tests/tsan.supp" \
-    ctest --test-dir "$dir" --output-on-failure -j "$jobs" -R "G1Surface|Plan|Embed|Tessellation"
+    ctest --test-dir "$dir" --output-on-failure -j "$jobs" -R "TsanCanary|G1Surface|Plan|Embed|Tessellation|Render"
 fi

@@ -10,8 +10,6 @@
 #include <unordered_map>
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
@@ -294,17 +292,11 @@ struct Model::Impl {
     } else {
       // Each point is written by one task only, so the output is the same for
       // any thread count; the grain keeps task overhead below 1%.
-      tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-      // execute() may hand the functor to a worker: its own fork and join for TSan.
-      const parallel::ForkJoin edges;
-      arena.execute([&] {
-        edges.taskBegins();
+      parallel::withThreads(options.threads, [&] {
         parallel::parallelFor(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t> &r) {
           range(surface, polygon, r.begin(), r.end());
         });
-        edges.taskEnds();
       });
-      edges.joined();
     }
     // Points outside the domain: NaN (whatever the range evaluation left
     // there) and the status.
