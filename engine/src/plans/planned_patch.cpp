@@ -422,7 +422,8 @@ void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bo
       }
     }
     kernels::gregoryJets(m, in, corners,
-                         {{result[0], result[1], result[2]}, {result[3], result[4], result[5]}, {result[6], result[7], result[8]}});
+                         {{result[0], result[1], result[2]}, {result[3], result[4], result[5]}, {result[6], result[7], result[8]}},
+                         kernels::kBestWidth, tables && g2 ? tables->cornerTerms.data() : nullptr);
     for (std::size_t k = 0; k < m; ++k)
       out[first + k] = {{result[0][k], result[1][k], result[2][k]},
                         {result[3][k], result[4][k], result[5][k]},

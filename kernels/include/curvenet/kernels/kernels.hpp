@@ -137,9 +137,11 @@ struct GregoryJetSamples {
 
 /// (b) gregoryPositions with exact first derivatives: the point into out.v,
 /// ∂/∂u into out.du, ∂/∂v into out.dv (product, quotient and chain rules
-/// through the ribbons and the rational weights, in one pass).
+/// through the ribbons and the rational weights, in one pass). G² takes
+/// its correction patches in the GregoryCornerTerms form, as
+/// gregoryPositions does (`terms`: one per side, or null to compute them).
 void gregoryJets(std::size_t count, const GregoryJetSamples &samples, const GregoryCorner *corners, DualVec3Span out,
-                 std::int64_t width = kBestWidth);
+                 std::int64_t width = kBestWidth, const GregoryCornerTerms *terms = nullptr);
 
 /// Constants of one side of a regular domain for the cubic Hermite sweepline
 /// (paper 000 eq. 20) in that side's frame (side from (0,0) to (1,0), domain
