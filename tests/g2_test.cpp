@@ -8,12 +8,14 @@
 #include <cstdio>
 #include <map>
 #include <numbers>
+#include <random>
 
 #include "curvenet/builtins.hpp"
 #include "curvenet/curvature_jump.hpp"
 #include "curvenet/error.hpp"
 #include "curvenet/surface.hpp"
 #include "curvenet/tessellate.hpp"
+#include "patches/patch.hpp"
 #include "ribbons/ribbons.hpp"
 
 using namespace curvenet;
@@ -321,6 +323,37 @@ TEST(Ribbons, SuppliedCurveJetAndBatchesAgreeWithTheFence) {
       const LinearRibbon::SecondJet j = linear.secondJet(s[k]);
       EXPECT_LE(norm(j.N - n), 1e-12) << "s " << s[k];
       EXPECT_LE(norm(j.dN - dn * c.dudS), 1e-10 * (1 + norm(dn))) << "s " << s[k];
+    }
+  }
+}
+
+TEST(CorrectionPatch, RearrangedFormAgreesWithTheReference) {
+  // The evaluation form (Taylor part by Horner, closed-form partials of the
+  // rational terms, one division) against the reference (each W_pq as a
+  // weighted pair in Dual arithmetic), inside the corner's quadrant, on its
+  // two sides, near the corner and at it.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0, 1), coordinate(-2, 2);
+  auto randomVector = [&] { return Vec3{coordinate(rng), coordinate(rng), coordinate(rng)}; };
+  const std::pair<double, double> fixed[] = {{0, 0.3}, {0.4, 0}, {1e-5, 2e-5}, {1e-3, 1e-4}, {0, 0}, {1, 1}};
+  for (int trial = 0; trial < 2000; ++trial) {
+    CornerData2 c{};
+    kernels::GregoryCorner corner{};
+    int slot = 0;
+    auto store = [&](const Vec3 &v) { corner.v[slot][0] = v.x, corner.v[slot][1] = v.y, corner.v[slot][2] = v.z, ++slot; };
+    c.a[0][0] = randomVector();
+    store(c.a[0][0]);
+    for (int p = 0; p <= 2; ++p)
+      for (int r = 0; r <= 2; ++r)
+        if (p || r) c.a[p][r] = randomVector(), c.b[p][r] = randomVector(), store(c.a[p][r]), store(c.b[p][r]);
+    const kernels::GregoryCornerTerms terms = kernels::gregoryCornerTerms(corner);
+    const auto [sv, tv] = trial < 6 ? fixed[trial] : std::pair{unit(rng), unit(rng)};
+    const Dual s{sv, coordinate(rng), coordinate(rng)}, t{tv, coordinate(rng), coordinate(rng)};
+    const DualVec3 fast = gregoryCorrection2(terms, c, s, t), reference = gregoryCorrection2(c, s, t);
+    const Vec3 parts[3][2] = {{fast.v, reference.v}, {fast.du, reference.du}, {fast.dv, reference.dv}};
+    for (const auto &[x, y] : parts) {
+      const double scale = std::max({1.0, norm(x), norm(y)});
+      EXPECT_LE(norm(x - y), 1e-12 * scale) << "s = " << sv << ", t = " << tv;
     }
   }
 }

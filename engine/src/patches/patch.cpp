@@ -120,6 +120,58 @@ DualVec3 gregoryCorrection2(const CornerData2 &c, Dual s, Dual t) {
   return q;
 }
 
+DualVec3 gregoryCorrection2(const kernels::GregoryCornerTerms &terms, const CornerData2 &c, Dual s, Dual t) {
+  const double sv = s.v, tv = t.v;
+  const double sp[4] = {1.0, sv, sv * sv, sv * sv * sv}, tp[4] = {1.0, tv, tv * tv, tv * tv * tv};
+  // The eight denominators s^{3−p} + t^{3−r} with one division (prefix
+  // products); at or within underflow of the corner, the reference form.
+  double inverse[8], prefix[8];
+  int j = 0;
+  for (int p = 0; p <= 2; ++p)
+    for (int r = 0; r <= 2; ++r)
+      if (p || r) inverse[j] = sp[3 - p] + tp[3 - r], prefix[j] = j ? prefix[j - 1] * inverse[j] : inverse[j], ++j;
+  if (!(prefix[7] > 1e-250)) return gregoryCorrection2(c, s, t);
+  double all = 1 / prefix[7];
+  for (j = 7; j > 0; --j) {
+    const double mine = all * prefix[j - 1];
+    all *= inverse[j];
+    inverse[j] = mine;
+  }
+  inverse[0] = all;
+  // Q and its partials ∂/∂s, ∂/∂t: the biquadratic part by Horner, then the
+  // rational terms ρ_j = s³ t^r / den_j (see kernels::GregoryCornerTerms):
+  //   ∂ρ/∂s = s² t^r (3 t^{3−r} + p s^{3−p}) / den², ∂ρ/∂t = s³ t^{r−1} (r s^{3−p} + (2r − 3) t^{3−r}) / den².
+  double q[3], qs[3], qt[3];
+  for (int c3 = 0; c3 < 3; ++c3) {
+    double h[3], dh[3];
+    for (int p = 0; p <= 2; ++p) {
+      const double *row[3] = {terms.taylor[p][0], terms.taylor[p][1], terms.taylor[p][2]};
+      h[p] = row[0][c3] + tv * (row[1][c3] + tv * row[2][c3]);
+      dh[p] = row[1][c3] + 2 * tv * row[2][c3];
+    }
+    q[c3] = h[0] + sv * (h[1] + sv * h[2]);
+    qs[c3] = h[1] + 2 * sv * h[2];
+    qt[c3] = dh[0] + sv * (dh[1] + sv * dh[2]);
+  }
+  j = 0;
+  for (int p = 0; p <= 2; ++p)
+    for (int r = 0; r <= 2; ++r) {
+      if (!p && !r) continue;
+      const double x = sp[3 - p], y = tp[3 - r], i1 = inverse[j], i2 = i1 * i1;
+      const double rho = sp[3] * tp[r] * i1;
+      const double rhoS = sp[2] * tp[r] * (3 * y + p * x) * i2;
+      const double rhoT = r ? sp[3] * tp[r - 1] * (r * x + (2 * r - 3) * y) * i2 : -3 * sp[3] * tp[2] * i2;
+      for (int c3 = 0; c3 < 3; ++c3) {
+        const double w = terms.rational[j][c3];
+        q[c3] += rho * w, qs[c3] += rhoS * w, qt[c3] += rhoT * w;
+      }
+      ++j;
+    }
+  // The chain rule through s(u, v) and t(u, v).
+  const Vec3 value{q[0], q[1], q[2]}, bySide{qs[0], qs[1], qs[2]}, across{qt[0], qt[1], qt[2]};
+  return {value, bySide * s.du + across * t.du, bySide * s.dv + across * t.dv};
+}
+
 DualVec3 gregoryCorrection(const CornerData &c, Dual s, Dual t, Dual gs, Dual gt) {
   return gregoryCorrectionOf(c, s, t, gs, gt);
 }
@@ -142,6 +194,8 @@ Patch::Patch(std::vector<LinearRibbon> ribbons, const SurfaceOptions &options, s
     if (options_.scheme == Scheme::GregoryG2)
       corners2_.push_back(cornerData2(parabolic_[domain_.wrap(i - 1)].end(), parabolic_[i].start()));
   }
+  if (options_.scheme == Scheme::GregoryG2)
+    for (int i = 0; i < domain_.sides(); ++i) cornerTerms2_.push_back(kernels::gregoryCornerTerms(cornerVectors(i)));
 }
 
 DualVec3 Patch::evaluate(double u, double v) const {
@@ -254,7 +308,7 @@ DualVec3 Patch::gregoryG2(Dual u, Dual v) const {
     const Dual si = s[i], ti = Dual(1.0) - s[prev];
     // I_{i,i−1} = R_{i−1}(s_{i−1}, s_i) + R_i(s_i, 1 − s_{i−1}) − Q (eq. 17).
     const DualVec3 interpolant =
-        ribbonAt(jet[prev], s[prev], si) + ribbonAt(jet[i], si, ti) - gregoryCorrection2(corners2_[i], si, ti);
+        ribbonAt(jet[prev], s[prev], si) + ribbonAt(jet[i], si, ti) - gregoryCorrection2(cornerTerms2_[i], corners2_[i], si, ti);
     result += b * interpolant;
   }
   return result;

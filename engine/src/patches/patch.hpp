@@ -179,6 +179,7 @@ private:
   /// G²: the parabolic ribbons' corner data (cornerData2 of the ends meeting
   /// at corner i), computed once instead of at every point.
   std::vector<CornerData2> corners2_;
+  std::vector<kernels::GregoryCornerTerms> cornerTerms2_; ///< corners2_ rearranged (G²)
   SurfaceOptions options_;
 };
 
@@ -199,8 +200,18 @@ DualVec3 gregoryCorrection(const CornerData &c, Dual s, Dual t, Dual gs, Dual gt
 /// Q = Σ_{p,q ≤ 2} s^p t^q / (p! q!) W_pq with
 /// W_pq = (s^{3−p} a_pq + t^{3−q} b_pq) / (s^{3−p} + t^{3−q}); W_00 = a_00.
 /// Q − R_{i−1}(1 − t, s) = O(t³) and Q − R_i(s, t) = O(s³) whatever the
-/// incompatibility of the two ribbons' corner derivatives.
+/// incompatibility of the two ribbons' corner derivatives. The reference
+/// form: each W_pq as its weighted pair in Dual arithmetic (three divisions
+/// each), which the tests hold the faster forms against.
 DualVec3 gregoryCorrection2(const CornerData2 &c, Dual s, Dual t);
+
+/// The same patch from its rearranged form (kernels::GregoryCornerTerms of
+/// c): the biquadratic part by Horner and each rational term with its
+/// closed-form partials in s and t, one division for all eight
+/// denominators, the chain rule once at the end — as the kernels evaluate
+/// it. Within underflow of the corner (s = t = 0) it returns the reference
+/// form's value.
+DualVec3 gregoryCorrection2(const kernels::GregoryCornerTerms &terms, const CornerData2 &c, Dual s, Dual t);
 
 } // namespace v1
 } // namespace curvenet
