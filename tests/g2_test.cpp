@@ -340,7 +340,9 @@ TEST(CorrectionPatch, RearrangedFormAgreesWithTheReference) {
     CornerData2 c{};
     kernels::GregoryCorner corner{};
     int slot = 0;
-    auto store = [&](const Vec3 &v) { corner.v[slot][0] = v.x, corner.v[slot][1] = v.y, corner.v[slot][2] = v.z, ++slot; };
+    auto store = [&](const Vec3 &v) {
+      corner.v[slot][0] = v.x, corner.v[slot][1] = v.y, corner.v[slot][2] = v.z, ++slot;
+    };
     c.a[0][0] = randomVector();
     store(c.a[0][0]);
     for (int p = 0; p <= 2; ++p)

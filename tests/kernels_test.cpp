@@ -386,6 +386,90 @@ std::vector<Vec2> hardSweepPoints(int n, const SideFrame &side, std::mt19937_64 
   return points;
 }
 
+TEST(Kernels, CompositeRibbonAgreesAcrossWidthsAndWithDualArithmetic) {
+  // Reference: the CR formula (paper 002: three ribbons per side, Coons
+  // blending, two Gregory corrections) in Dual arithmetic with the engine's
+  // scalar gregoryCorrection. Some samples sit at a side's start corner
+  // (s = d = 0, where W takes (a + b) / 2) and some have a zero blend (the
+  // side is skipped).
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> unit(0.02, 0.98), u(-2, 2);
+  for (int n : {3, 5, 8}) {
+    constexpr size_t count = 203;
+    Soa s(3 * n, count), dist(3 * n, count), blend(3 * n, count), ribbons(36 * n, count, &rng);
+    for (size_t a = 0; a < size_t(3 * n); ++a)
+      for (size_t k = 0; k < count; ++k) {
+        s[a][k] = a % 3 ? u(rng) : unit(rng), dist[a][k] = a % 3 ? u(rng) : unit(rng);
+        blend[a][k] = a % 3 ? u(rng) : unit(rng);
+      }
+    for (int i = 0; i < n; ++i) {
+      s[3 * i][7 * i] = dist[3 * i][7 * i] = 0;                         // at the start corner
+      for (int part = 0; part < 3; ++part) blend[3 * i + part][7 * i + 3] = 0; // skipped
+    }
+    ck::CompositeSamples in;
+    in.sides = n;
+    for (int i = 0; i < n; ++i) {
+      for (int part = 0; part < 3; ++part)
+        in.s[i][part] = s[3 * i + part], in.d[i][part] = dist[3 * i + part], in.blend[i][part] = blend[3 * i + part];
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) {
+          const size_t base = 36 * i + 12 * r;
+          in.P[i][r][c] = ribbons[base + c], in.T[i][r][c] = ribbons[base + 3 + c];
+          in.dP[i][r][c] = ribbons[base + 6 + c], in.dT[i][r][c] = ribbons[base + 9 + c];
+        }
+    }
+    std::vector<ck::GregoryCorner> left(n), right(n);
+    for (auto *corners : {&left, &right})
+      for (auto &corner : *corners)
+        for (auto &v : corner.v)
+          for (double &x : v) x = u(rng);
+    auto cornerData = [](const ck::GregoryCorner &corner) {
+      const auto &v = corner.v;
+      auto vec = [](const double *p) { return Vec3{p[0], p[1], p[2]}; };
+      return CornerData{vec(v[0]), vec(v[1]), vec(v[3]), vec(v[5]), vec(v[2]), vec(v[4]), vec(v[6])};
+    };
+    std::vector<double> formula(9 * count);
+    for (size_t k = 0; k < count; ++k) {
+      auto at = [&](const double *const(&a)[3]) { return Vec3{a[0][k], a[1][k], a[2][k]}; };
+      auto gamma = [](Dual x) { return x / (x * 2.0 + 1.0); };
+      auto hermite0 = [](Dual x) { return x * x * (x * 2.0 - 3.0) + 1.0; };
+      DualVec3 sum{};
+      for (int i = 0; i < n; ++i) {
+        const Dual si{s[3 * i][k], s[3 * i + 1][k], s[3 * i + 2][k]};
+        const Dual di{dist[3 * i][k], dist[3 * i + 1][k], dist[3 * i + 2][k]};
+        const Dual b{blend[3 * i][k], blend[3 * i + 1][k], blend[3 * i + 2][k]};
+        if (b.isZero()) continue;
+        const Dual one = 1.0, sigma = one - si;
+        auto ribbon = [&](int r, Dual side, Dual distance) {
+          return DualVec3::along(at(in.P[i][r]), at(in.dP[i][r]), side) +
+                 gamma(distance) * DualVec3::along(at(in.T[i][r]), at(in.dT[i][r]), side);
+        };
+        const DualVec3 centre = ribbon(0, si, di), leftRibbon = ribbon(1, one - di, si),
+                       rightRibbon = ribbon(2, di, sigma);
+        const DualVec3 leftCorrection = gregoryCorrection(cornerData(left[i]), si, di, gamma(si), gamma(di));
+        const DualVec3 rightCorrection =
+            gregoryCorrection(cornerData(right[i]), sigma, di, gamma(sigma), gamma(di));
+        const Dual a0s = hermite0(si), a1s = one - a0s, a0d = hermite0(di);
+        sum += b * (a0s * leftRibbon + a0d * centre + a1s * rightRibbon - (a0s * a0d) * leftCorrection -
+                    (a1s * a0d) * rightCorrection);
+      }
+      sum = Dual(0.5) * sum;
+      const Vec3 parts[3] = {sum.v, sum.du, sum.dv};
+      for (int p = 0; p < 3; ++p)
+        for (int c = 0; c < 3; ++c) formula[(3 * p + c) * count + k] = parts[p][c];
+    }
+    const std::vector<double> positions(formula.begin(), formula.begin() + 3 * count);
+    for (const auto &w : ck::availableWidths()) {
+      Soa jets(9, count), points(3, count);
+      ck::compositeRibbonJets(count, in, left.data(), right.data(), span9(jets), w.id);
+      EXPECT_LE(relativeDifference(jets.data, formula), 1e-12) << w.name << " n=" << n;
+      double *const out[3] = {points[0], points[1], points[2]};
+      ck::compositeRibbonPositions(count, in, left.data(), right.data(), out, w.id);
+      EXPECT_LE(relativeDifference(points.data, positions), 1e-12) << w.name << " n=" << n;
+    }
+  }
+}
+
 TEST(Kernels, SweepFastPathAgreesWithRobustSolverWhereItFallsBack) {
   std::mt19937_64 rng(17);
   for (int n = 3; n <= 8; ++n) {

@@ -14,6 +14,7 @@
 #include <cstdint>
 
 #include "curvenet/kernels/kernels.hpp"
+#include "dispatch.hpp"
 
 // Argument bundles, shared by every target's instance (defined once).
 #ifndef CURVENET_KERNELS_ARGS
@@ -414,8 +415,9 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
           const V x = sp3[3 - p], y = tp3[3 - r], i1 = inv[j], i2 = hn::Mul(i1, i1);
           const V rho = hn::Mul(s3t[r], i1);
           const V rhoS = hn::Mul(hn::Mul(s2t[r], hn::MulAdd(hn::Set(d, p), x, hn::Mul(hn::Set(d, 3.0), y))), i2);
-          const V rhoT = r ? hn::Mul(hn::Mul(s3t[r - 1], hn::MulAdd(hn::Set(d, r), x, hn::Mul(hn::Set(d, 2 * r - 3), y))), i2)
-                           : hn::Mul(hn::Mul(hn::Set(d, -3.0), hn::Mul(sp3[3], tp3[2])), i2);
+          const V rhoT =
+              r ? hn::Mul(hn::Mul(s3t[r - 1], hn::MulAdd(hn::Set(d, r), x, hn::Mul(hn::Set(d, 2 * r - 3), y))), i2)
+                : hn::Mul(hn::Mul(hn::Set(d, -3.0), hn::Mul(sp3[3], tp3[2])), i2);
           for (int c = 0; c < 3; ++c) {
             const V R = hn::Set(d, terms.rational[j][c]);
             q[0][c] = hn::MulAdd(rho, R, q[0][c]);
@@ -438,7 +440,8 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
         const V A = hn::Mul(hn::Mul(xs, y), r2), B = hn::Mul(hn::Mul(x, yt), r2);
         const V waU = hn::NegMulAdd(B, t.u, hn::Mul(A, s.u)), waV = hn::NegMulAdd(B, t.w, hn::Mul(A, s.w));
         const V fU = hn::MulAdd(ft, t.u, hn::Mul(fs, s.u)), fV = hn::MulAdd(ft, t.w, hn::Mul(fs, s.w));
-        const V fa = hn::Mul(f, wa), faU = hn::MulAdd(fU, wa, hn::Mul(f, waU)), faV = hn::MulAdd(fV, wa, hn::Mul(f, waV));
+        const V fa = hn::Mul(f, wa);
+        const V faU = hn::MulAdd(fU, wa, hn::Mul(f, waU)), faV = hn::MulAdd(fV, wa, hn::Mul(f, waV));
         const V fb = hn::Sub(f, fa), fbU = hn::Sub(fU, faU), fbV = hn::Sub(fV, faV);
         for (int c = 0; c < 3; ++c) {
           const V va = hn::Set(d, vec[slot][c]), vb = hn::Set(d, vec[slot + 1][c]);
@@ -781,9 +784,9 @@ HWY_EXPORT(GregoryJets);
 HWY_EXPORT(EvaluateTable);
 HWY_EXPORT(Lanes);
 
-namespace {
 /// Index into the dispatch tables: the best target, the baseline for the
-/// scalar reference (its width-1 instance), or the one requested.
+/// scalar reference (its width-1 instance), or the one requested
+/// (dispatch.hpp: the other kernel sources dispatch through it too).
 std::size_t tableIndex(std::int64_t width, bool &reference) {
   reference = width == kernels::kScalarReference;
   if (width == kernels::kBestWidth || reference) {
@@ -795,7 +798,6 @@ std::size_t tableIndex(std::int64_t width, bool &reference) {
   const std::int64_t mask = HWY_CHOSEN_TARGET_SHIFT(width) | HWY_CHOSEN_TARGET_MASK_SCALAR;
   return hwy::Num0BitsBelowLS1Bit_Nonzero64(static_cast<std::uint64_t>(mask & HWY_CHOSEN_TARGET_MASK_TARGETS));
 }
-} // namespace
 } // namespace kernels_impl
 
 inline namespace v1 {

@@ -307,8 +307,8 @@ DualVec3 Patch::gregoryG2(Dual u, Dual v) const {
     const int prev = domain_.wrap(i - 1);
     const Dual si = s[i], ti = Dual(1.0) - s[prev];
     // I_{i,i−1} = R_{i−1}(s_{i−1}, s_i) + R_i(s_i, 1 − s_{i−1}) − Q (eq. 17).
-    const DualVec3 interpolant =
-        ribbonAt(jet[prev], s[prev], si) + ribbonAt(jet[i], si, ti) - gregoryCorrection2(cornerTerms2_[i], corners2_[i], si, ti);
+    const DualVec3 interpolant = ribbonAt(jet[prev], s[prev], si) + ribbonAt(jet[i], si, ti) -
+                                 gregoryCorrection2(cornerTerms2_[i], corners2_[i], si, ti);
     result += b * interpolant;
   }
   return result;
@@ -376,7 +376,6 @@ template <class T, class Emit>
 void Patch::compositeRibbonBatch(std::size_t count, const T *const *s, const T *const *d, const T *const *blends,
                                  const Emit &emit) const {
   using N = Numbers<T>;
-  using Point = typename N::Point;
   constexpr bool slopes = !std::is_same_v<T, double>;
   // Blocks whose ribbon arrays (up to 36 per side) stay in the fast caches.
   constexpr std::size_t kBlock = 64;
@@ -384,11 +383,14 @@ void Patch::compositeRibbonBatch(std::size_t count, const T *const *s, const T *
   constexpr int kArrays = 3 * kPerRibbon + 3;   // three ribbons and their parameters
   const int n = domain_.sides();
   const PatchTables &t = tables();
-  thread_local std::vector<double> scratch;
+  thread_local std::vector<double> scratch, splits, outputs;
   scratch.resize(static_cast<std::size_t>(n) * kArrays * kBlock);
-  auto gamma = [](T x) { return x / (x * 2.0 + 1.0); };
-  auto hermite0 = [](T x) { return x * x * (x * 2.0 - 3.0) + 1.0; };
-  std::array<Point, kBlock> sum;
+  if constexpr (slopes) splits.resize(static_cast<std::size_t>(n) * 9 * kBlock);
+  outputs.resize(9 * kBlock);
+  // Dual inputs split into arrays: which (s, d, blend), side, part (value, ∂u, ∂v).
+  auto split = [&](int which, int i, int part) {
+    return splits.data() + ((static_cast<std::size_t>(i) * 3 + which) * 3 + part) * kBlock;
+  };
   for (std::size_t first = 0; first < count; first += kBlock) {
     const std::size_t m = std::min(kBlock, count - first);
     // Per side i, three ribbons as in compositeRibbonWith: R_i at s_i, R_{i−1}
@@ -412,34 +414,47 @@ void Patch::compositeRibbonBatch(std::size_t count, const T *const *s, const T *
         t.sides[ribbon[r]].evaluate(m, at, values, slopes ? derivatives : nullptr);
       }
     }
-    std::fill(sum.begin(), sum.begin() + m, Point{});
+    // The CR formula over the block: kernels::compositeRibbon{Positions,Jets}
+    // on structure-of-arrays inputs (a Dual batch split into its value and
+    // partials).
+    kernels::CompositeSamples in;
+    in.sides = n;
     for (int i = 0; i < n; ++i) {
-      const CornerData &leftCorner = corners_[i], &rightCorner = endCorners_[i];
-      // Ribbon r's P (f = 0) or T (f = 1), value and slope, at sample k.
-      auto vec = [&](int r, int f, int slope, std::size_t k) {
-        const int j = kPerRibbon * r + 6 * slope + 3 * f;
-        return Vec3{array(i, j)[k], array(i, j + 1)[k], array(i, j + 2)[k]};
-      };
-      auto ribbonAt = [&](int r, T side, T distance, std::size_t k) {
-        return N::along(vec(r, 0, 0, k), slopes ? vec(r, 0, 1, k) : Vec3{}, side) +
-               gamma(distance) * N::along(vec(r, 1, 0, k), slopes ? vec(r, 1, 1, k) : Vec3{}, side);
-      };
-      for (std::size_t k = 0; k < m; ++k) {
-        const T blend = blends[i][first + k];
-        if (N::isZero(blend)) continue;
-        const T si = s[i][first + k], di = d[i][first + k], one = 1.0, sigma = one - si;
-        const Point centre = ribbonAt(0, si, di, k);
-        const Point leftRibbon = ribbonAt(1, one - di, si, k);
-        const Point rightRibbon = ribbonAt(2, di, sigma, k);
-        const T gd = gamma(di);
-        const Point leftCorrection = gregoryCorrectionOf(leftCorner, si, di, gamma(si), gd);
-        const Point rightCorrection = gregoryCorrectionOf(rightCorner, sigma, di, gamma(sigma), gd);
-        const T a0s = hermite0(si), a1s = one - a0s, a0d = hermite0(di);
-        sum[k] += blend * (a0s * leftRibbon + a0d * centre + a1s * rightRibbon - (a0s * a0d) * leftCorrection -
-                           (a1s * a0d) * rightCorrection);
+      const T *inputs[3] = {s[i] + first, d[i] + first, blends[i] + first};
+      const double **targets[3] = {in.s[i], in.d[i], in.blend[i]};
+      for (int which = 0; which < 3; ++which) {
+        if constexpr (slopes) {
+          for (int part = 0; part < 3; ++part) {
+            double *column = split(which, i, part);
+            for (std::size_t k = 0; k < m; ++k)
+              column[k] = part == 0 ? inputs[which][k].v : part == 1 ? inputs[which][k].du : inputs[which][k].dv;
+            targets[which][part] = column;
+          }
+        } else {
+          targets[which][0] = inputs[which];
+        }
       }
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) {
+          in.P[i][r][c] = array(i, kPerRibbon * r + c), in.T[i][r][c] = array(i, kPerRibbon * r + 3 + c);
+          if constexpr (slopes)
+            in.dP[i][r][c] = array(i, kPerRibbon * r + 6 + c), in.dT[i][r][c] = array(i, kPerRibbon * r + 9 + c);
+        }
     }
-    for (std::size_t k = 0; k < m; ++k) emit(first + k, T(0.5) * sum[k]);
+    double *result[9];
+    for (int j = 0; j < 9; ++j) result[j] = outputs.data() + static_cast<std::size_t>(j) * kBlock;
+    if constexpr (slopes) {
+      kernels::compositeRibbonJets(m, in, t.compositeStart.data(), t.compositeEnd.data(),
+                                   {{result[0], result[1], result[2]}, {result[3], result[4], result[5]},
+                                    {result[6], result[7], result[8]}});
+      for (std::size_t k = 0; k < m; ++k)
+        emit(first + k, DualVec3{{result[0][k], result[1][k], result[2][k]},
+                                 {result[3][k], result[4][k], result[5][k]},
+                                 {result[6][k], result[7][k], result[8][k]}});
+    } else {
+      kernels::compositeRibbonPositions(m, in, t.compositeStart.data(), t.compositeEnd.data(), result);
+      for (std::size_t k = 0; k < m; ++k) emit(first + k, Vec3{result[0][k], result[1][k], result[2][k]});
+    }
   }
 }
 

@@ -21,11 +21,13 @@ class EvaluationPlan;
 
 /// What the fast evaluation paths of a Gregory patch need besides a plan:
 /// each side's ribbon as a RibbonTable (P, T; G²: also C) and each corner's
-/// correction-patch vectors (G²: also in the positions kernel's form).
+/// correction-patch vectors (G²: also in the positions kernel's form;
+/// composite-ribbon: each side's start and end corrections).
 struct PatchTables {
   std::vector<RibbonTable> sides;
   std::vector<kernels::GregoryCorner> corners;
   std::vector<kernels::GregoryCornerTerms> cornerTerms; ///< G² only
+  std::vector<kernels::GregoryCorner> compositeStart, compositeEnd; ///< composite-ribbon only
   std::size_t memory() const;
 };
 

@@ -149,7 +149,19 @@ const PatchTables &Patch::tables() const {
         };
         t.sides.emplace_back(6, ribbons_[i].breakpoints(), exact);
       }
-      if (options_.scheme == Scheme::CompositeRibbon) continue; // its corners: corners_, endCorners_
+      if (options_.scheme == Scheme::CompositeRibbon) {
+        // corners_ and endCorners_ {a00, a10, a01, a11, b10, b01, b11} in kernel order.
+        auto kernelOrder = [](const CornerData &c) {
+          const Vec3 vectors[7] = {c.a00, c.a10, c.b10, c.a01, c.b01, c.a11, c.b11};
+          kernels::GregoryCorner corner{};
+          for (int j = 0; j < 7; ++j)
+            corner.v[j][0] = vectors[j].x, corner.v[j][1] = vectors[j].y, corner.v[j][2] = vectors[j].z;
+          return corner;
+        };
+        t.compositeStart.push_back(kernelOrder(corners_[i]));
+        t.compositeEnd.push_back(kernelOrder(endCorners_[i]));
+        continue;
+      }
       t.corners.push_back(cornerVectors(i));
       if (g2) t.cornerTerms.push_back(kernels::gregoryCornerTerms(t.corners.back()));
     }
@@ -422,7 +434,9 @@ void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bo
       }
     }
     kernels::gregoryJets(m, in, corners,
-                         {{result[0], result[1], result[2]}, {result[3], result[4], result[5]}, {result[6], result[7], result[8]}},
+                         {{result[0], result[1], result[2]},
+                          {result[3], result[4], result[5]},
+                          {result[6], result[7], result[8]}},
                          kernels::kBestWidth, tables && g2 ? tables->cornerTerms.data() : nullptr);
     for (std::size_t k = 0; k < m; ++k)
       out[first + k] = {{result[0][k], result[1][k], result[2][k]},

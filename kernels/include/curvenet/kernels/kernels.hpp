@@ -143,6 +143,38 @@ struct GregoryJetSamples {
 void gregoryJets(std::size_t count, const GregoryJetSamples &samples, const GregoryCorner *corners, DualVec3Span out,
                  std::int64_t width = kBestWidth, const GregoryCornerTerms *terms = nullptr);
 
+/// Per-sample data of a Composite Ribbon patch (paper 002 Sec. 2). Side i
+/// contributes B_i C_i, its curved ribbon C_i a Coons patch of three
+/// ribbons: R_i at (s_i, d_i), R_{i−1} at (1 − d_i, s_i) and R_{i+1} at
+/// (d_i, 1 − s_i), each R(σ, δ) = P(σ) + γ(δ) T(σ) with γ(x) = x / (2x + 1),
+/// less the Gregory corrections of its two corners. ribbon r of side i
+/// (0: R_i, 1: R_{i−1}, 2: R_{i+1}) is given at its own parameter (s_i,
+/// 1 − d_i, d_i): P and T, and for the jets their σ-derivatives dP, dT.
+/// Parameters and blends come with their domain partials ([0] the value,
+/// [1] ∂/∂u, [2] ∂/∂v; the partials only for the jets).
+struct CompositeSamples {
+  static constexpr int kMaxSides = 8;
+  int sides = 0; ///< 3 … 8
+  const double *s[kMaxSides][3] = {}, *d[kMaxSides][3] = {}, *blend[kMaxSides][3] = {};
+  const double *P[kMaxSides][3][3] = {}, *T[kMaxSides][3][3] = {};   ///< [side][ribbon][x, y, z]
+  const double *dP[kMaxSides][3][3] = {}, *dT[kMaxSides][3][3] = {}; ///< jets only
+};
+
+/// (b) Composite Ribbon points: out[c][k] = ½ Σ_i B_i C_i. The corrections
+/// are Gregory's G¹ ones in GregoryCorner's G¹ layout (a00, a10, b10, a01,
+/// b01, a11, b11): `left[i]` at side i's start in (s_i, d_i), `right[i]` at
+/// its end in (1 − s_i, d_i), each Q = a00 + γ(s) W(a10, b10; s, t²) +
+/// γ(t) W(a01, b01; s², t) + γ(s) γ(t) W(a11, b11; s, t), W(a, b; x, y) =
+/// (x a + y b) / (x + y) ((a + b) / 2 where x + y = 0). Samples whose blend
+/// and its partials are all zero contribute nothing (their interpolant may
+/// be undefined there).
+void compositeRibbonPositions(std::size_t count, const CompositeSamples &samples, const GregoryCorner *left,
+                              const GregoryCorner *right, double *const out[3], std::int64_t width = kBestWidth);
+/// compositeRibbonPositions with exact first derivatives over the domain
+/// (product, quotient and chain rules in dual arithmetic, lane by lane).
+void compositeRibbonJets(std::size_t count, const CompositeSamples &samples, const GregoryCorner *left,
+                         const GregoryCorner *right, DualVec3Span out, std::int64_t width = kBestWidth);
+
 /// Constants of one side of a regular domain for the cubic Hermite sweepline
 /// (paper 000 eq. 20) in that side's frame (side from (0,0) to (1,0), domain
 /// at y > 0): a, b the directions of the neighbouring sides leaving the two
