@@ -161,6 +161,39 @@ void kernelGregoryBench(benchmark::State &state, std::int64_t width) {
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * kBatch));
 }
 
+/// The whole Composite Ribbon kernel for a pentagon (points, or points with
+/// their domain derivatives) over random per-side data.
+void kernelCompositeBench(benchmark::State &state, std::int64_t width, bool jets) {
+  constexpr int n = 5, perSide = 9 + 36;
+  KernelData in(n * perSide, kBatch), out(9, kBatch);
+  ck::CompositeSamples samples;
+  samples.sides = n;
+  for (int i = 0; i < n; ++i) {
+    for (int part = 0; part < 3; ++part)
+      samples.s[i][part] = in.at(perSide * i + part, kBatch), samples.d[i][part] = in.at(perSide * i + 3 + part, kBatch),
+      samples.blend[i][part] = in.at(perSide * i + 6 + part, kBatch);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) {
+        const std::size_t base = perSide * i + 9 + 12 * r;
+        samples.P[i][r][c] = in.at(base + c, kBatch), samples.T[i][r][c] = in.at(base + 3 + c, kBatch);
+        samples.dP[i][r][c] = in.at(base + 6 + c, kBatch), samples.dT[i][r][c] = in.at(base + 9 + c, kBatch);
+      }
+  }
+  std::vector<ck::GregoryCorner> corners(n);
+  for (auto &corner : corners)
+    for (auto &v : corner.v) v[0] = 0.3, v[1] = -0.2, v[2] = 0.1;
+  double *o[9];
+  for (int j = 0; j < 9; ++j) o[j] = out.at(j, kBatch);
+  for (auto _ : state) {
+    if (jets)
+      ck::compositeRibbonJets(kBatch, samples, corners.data(), corners.data(),
+                              {{o[0], o[1], o[2]}, {o[3], o[4], o[5]}, {o[6], o[7], o[8]}}, width);
+    else ck::compositeRibbonPositions(kBatch, samples, corners.data(), corners.data(), o, width);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * kBatch));
+}
+
 /// Table evaluation, 9 coordinates (a G² ribbon: P, T, C), 256 intervals.
 void kernelTableBench(benchmark::State &state, std::int64_t width, bool slopes) {
   constexpr std::size_t intervals = 256, dims = 9, padded = 12;
@@ -248,6 +281,8 @@ int registerAll() {
   for (const ck::Width &w : ck::availableWidths()) {
     const std::string suffix = "/" + w.name + "x" + std::to_string(w.lanes);
     benchmark::RegisterBenchmark(("KernelGregoryPositionsG2n5" + suffix).c_str(), kernelGregoryBench, w.id);
+    benchmark::RegisterBenchmark(("KernelCompositeRibbonn5" + suffix).c_str(), kernelCompositeBench, w.id, false);
+    benchmark::RegisterBenchmark(("KernelCompositeRibbonJetsn5" + suffix).c_str(), kernelCompositeBench, w.id, true);
     benchmark::RegisterBenchmark(("KernelTable9" + suffix).c_str(), kernelTableBench, w.id, false);
     benchmark::RegisterBenchmark(("KernelTable9Slopes" + suffix).c_str(), kernelTableBench, w.id, true);
     benchmark::RegisterBenchmark(("KernelHermiteSweep" + suffix).c_str(), kernelSweepBench, w.id, false);
