@@ -120,7 +120,16 @@ TEST(MeshReaders, ObjAndOffRoundTripAndRefusals) {
   const Mesh back = parseObjMesh(obj.str(), "t.obj");
   ASSERT_EQ(back.positions.size(), mesh.positions.size());
   ASSERT_EQ(back.triangles, mesh.triangles);
-  EXPECT_EQ(back.positions[17], mesh.positions[17]);
+  EXPECT_EQ(back.positions, mesh.positions); // shortest round-trip text: the same doubles
+  // A tessellation with normals, more lines than one formatting chunk
+  // (2¹⁴), on two threads: the same mesh back, lines in order.
+  const Mesh big = tessellate(Surface::build(Network::build(builtinNetwork("pentagon")), {}), {128, 2});
+  ASSERT_GT(big.positions.size() + big.normals.size() + big.triangles.size(), 3u << 14);
+  std::ostringstream bigObj;
+  writeObj(big, bigObj);
+  const Mesh bigBack = parseObjMesh(bigObj.str(), "big.obj");
+  EXPECT_EQ(bigBack.positions, big.positions);
+  EXPECT_EQ(bigBack.triangles, big.triangles);
   // Quads are fan-triangulated; relative indices and v/t/n forms accepted.
   const Mesh quad = parseObjMesh("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nf -4/1 -3/1 -2/1 -1/1\n");
   EXPECT_EQ(quad.triangles.size(), 2u);

@@ -57,7 +57,12 @@ Mesh parseOffMesh(const std::string &text, const std::string &file = {});
 /// Reads .obj or .off by extension.
 Mesh readMeshFile(const std::string &path);
 
+/// OBJ text: `v` lines, `vn` lines when the mesh has normals (faces then
+/// `f a//a b//b c//c`), each double in its shortest round-trip form, so a
+/// reader gets the same doubles back. Formatted on all threads (TBB) in
+/// chunks, written in order; memory beyond the mesh: a few MB per thread.
 void writeObj(const Mesh &mesh, std::ostream &out);
+/// Binary little-endian PLY: float64 positions (and normals), uint32 triangles.
 void writePly(const Mesh &mesh, std::ostream &out);
 /// Writes OBJ or PLY by the extension of `path` (atomically).
 void writeMeshFile(const Mesh &mesh, const std::string &path);
