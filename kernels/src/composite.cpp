@@ -9,6 +9,8 @@
 #include <hwy/foreach_target.h> // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include "loops-inl.h"
+
 #include <cstddef>
 #include <cstdint>
 
@@ -156,15 +158,6 @@ template <bool Jets, class D> HWY_INLINE void compositeBody(D d, std::size_t k, 
       hn::StoreU(hn::Mul(half, sum.c[c].w), d, a.out.dv[c] + k);
     }
   }
-}
-
-/// Runs body(d, k) over [0, count) in vectors of d's width, the tail at width 1.
-template <class D, class Body> HWY_INLINE void forEachVector(D d, std::size_t count, const Body &body) {
-  const std::size_t lanes = hn::Lanes(d);
-  std::size_t k = 0;
-  for (; k + lanes <= count; k += lanes) body(d, k);
-  const hn::CappedTag<double, 1> one;
-  for (; k < count; ++k) body(one, k);
 }
 
 } // namespace

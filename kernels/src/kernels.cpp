@@ -8,6 +8,8 @@
 #include <hwy/foreach_target.h> // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include "loops-inl.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -59,15 +61,6 @@ namespace kernels_impl {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 namespace ck = curvenet::kernels;
-
-/// Runs body(d, k) over [0, count) in vectors of d's width, the tail at width 1.
-template <class D, class Body> HWY_INLINE void forEachVector(D d, std::size_t count, const Body &body) {
-  const std::size_t lanes = hn::Lanes(d);
-  std::size_t k = 0;
-  for (; k + lanes <= count; k += lanes) body(d, k);
-  const hn::CappedTag<double, 1> one;
-  for (; k < count; ++k) body(one, k);
-}
 
 /// The interval of s (see PolynomialTable): its grid cell's first, then at
 /// most `steps` forward moves, branch-free (the grid is fine enough).
