@@ -174,5 +174,6 @@ TEST_P(BatchEvaluation, MatchesPointwiseEvaluationAtRandomDomainPoints) {
 INSTANTIATE_TEST_SUITE_P(Schemes, BatchEvaluation,
                          testing::Values(SurfaceOptions{Scheme::GregoryG1, Sweepline::Radial},
                                          SurfaceOptions{Scheme::GregoryG1, Sweepline::Hermite},
-                                         SurfaceOptions{Scheme::GregoryG2, Sweepline::Hermite}),
+                                         SurfaceOptions{Scheme::GregoryG2, Sweepline::Hermite},
+                                         SurfaceOptions{Scheme::CompositeRibbon}),
                          schemeParamName);

@@ -258,7 +258,9 @@ public:
   /// uv.size()). The Gregory schemes with the radial or cubic Hermite sweep
   /// run batched: sweepline roots by the SIMD solver, corner blends, the
   /// face's ribbon tables (built on first use, ~1 ms) and one kernel pass —
-  /// about 30× the pointwise rate. Other schemes evaluate point by point.
+  /// about 30× the pointwise rate. composite-ribbon batches of 512 points or
+  /// more take the same tables and the CR kernel (about 8× the pointwise
+  /// rate); smaller ones, and the other schemes, evaluate point by point.
   /// Serial; thread-safe (call it from several threads on disjoint outputs).
   void evaluatePositions(int face, std::span<const Vec2> uv, std::span<Vec3> out) const;
 

@@ -253,6 +253,40 @@ void Patch::gregoryPositionsFrom(std::size_t count, const double *const *sideVal
 void Patch::evaluatePositions(std::size_t count, const double *u, const double *v, const PositionSink &out) const {
   const int n = domain_.sides();
   const bool gregory = options_.scheme == Scheme::GregoryG1 || options_.scheme == Scheme::GregoryG2;
+  // Composite-ribbon batches large enough to pay for the ribbon tables
+  // (~1–4 ms a face, once): each point's Wachspress distances, linear-sweep
+  // side parameters and blends (compositeRibbon's formulas), then the tables
+  // and the CR kernel; smaller batches point by point.
+  constexpr std::size_t kCompositeBatch = 512;
+  if (options_.scheme == Scheme::CompositeRibbon && count >= kCompositeBatch) {
+    constexpr std::size_t kChunk = 512;
+    thread_local std::vector<double> columns;
+    for (std::size_t first = 0; first < count; first += kChunk) {
+      const std::size_t m = std::min(kChunk, count - first);
+      columns.resize(3 * static_cast<std::size_t>(n) * m);
+      std::array<const double *, kMaxSides> side, distance, blend;
+      auto column = [&](int which, int i) { return columns.data() + (static_cast<std::size_t>(which) * n + i) * m; };
+      for (std::size_t k = 0; k < m; ++k) {
+        double x = u[first + k], y = v[first + k];
+        for (int i = 0; i < n; ++i) { // a corner within rounding: the exact corner, as evaluate() snaps
+          const Vec2 &c = domain_.corner(i);
+          if (std::abs(x - c.x) <= 1e-14 && std::abs(y - c.y) <= 1e-14) x = c.x, y = c.y;
+        }
+        const Dual pu = Dual::u(x), pv = Dual::vCoord(y);
+        std::array<Dual, kMaxSides> d, squared, product;
+        domain_.wachspressDistances(pu, pv, std::span<Dual>(d.data(), static_cast<std::size_t>(n)));
+        for (int i = 0; i < n; ++i) {
+          column(0, i)[k] = domain_.linearSweepSideParameter(i, pu, pv).v, column(1, i)[k] = d[i].v;
+          squared[i] = d[i] * d[i];
+        }
+        const Dual total = domain_.cornerProducts(squared, product); // product[i] = D_{i,i−1}
+        for (int i = 0; i < n; ++i) column(2, i)[k] = ((product[i] + product[domain_.wrap(i + 1)]) / total).v;
+      }
+      for (int i = 0; i < n; ++i) side[i] = column(0, i), distance[i] = column(1, i), blend[i] = column(2, i);
+      compositeRibbonPositions(m, side.data(), distance.data(), blend.data(), out.from(first));
+    }
+    return;
+  }
   if (!gregory || options_.sweepline == Sweepline::QuinticHermite) {
     for (std::size_t k = 0; k < count; ++k) out.set(k, evaluate(u[k], v[k]).v);
     return;
