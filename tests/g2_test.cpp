@@ -359,3 +359,22 @@ TEST(CorrectionPatch, RearrangedFormAgreesWithTheReference) {
     }
   }
 }
+
+TEST(CorrectionPatch, G1ClosedFormAgreesWithTheGeneralForm) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0, 1), coordinate(-2, 2);
+  auto randomVector = [&] { return Vec3{coordinate(rng), coordinate(rng), coordinate(rng)}; };
+  const std::pair<double, double> fixed[] = {{0, 0.3}, {0.4, 0}, {1e-5, 2e-5}, {1e-3, 1e-4}, {0, 0}, {1, 1}};
+  for (int trial = 0; trial < 2000; ++trial) {
+    const CornerData c{randomVector(), randomVector(), randomVector(), randomVector(),
+                       randomVector(), randomVector(), randomVector()};
+    const auto [sv, tv] = trial < 6 ? fixed[trial] : std::pair{unit(rng), unit(rng)};
+    const Dual s{sv, coordinate(rng), coordinate(rng)}, t{tv, coordinate(rng), coordinate(rng)};
+    const DualVec3 fast = gregoryCorrection(c, s, t), reference = gregoryCorrection(c, s, t, s, t);
+    const Vec3 parts[3][2] = {{fast.v, reference.v}, {fast.du, reference.du}, {fast.dv, reference.dv}};
+    for (const auto &[x, y] : parts) {
+      const double scale = std::max({1.0, norm(x), norm(y)});
+      EXPECT_LE(norm(x - y), 1e-12 * scale) << "s = " << sv << ", t = " << tv;
+    }
+  }
+}

@@ -176,6 +176,26 @@ DualVec3 gregoryCorrection(const CornerData &c, Dual s, Dual t, Dual gs, Dual gt
   return gregoryCorrectionOf(c, s, t, gs, gt);
 }
 
+DualVec3 gregoryCorrection(const CornerData &c, Dual s, Dual t) {
+  const double sv = s.v, tv = t.v;
+  const double d1 = sv + tv * tv, d2 = sv * sv + tv, d3 = sv + tv;
+  const double product = d1 * d2 * d3;
+  if (!(product > 1e-250)) return gregoryCorrectionOf(c, s, t, s, t); // at or within underflow of the corner
+  const double inverse = 1 / product;
+  const double i1 = d2 * d3 * inverse, i2 = d1 * d3 * inverse, i3 = d1 * d2 * inverse;
+  // Q = a00 + s b10 + t b01 + s t b11 + f1 (a10 − b10) + f2 (a01 − b01) + f3 (a11 − b11) with
+  // f1 = s² / (s + t²), f2 = s² t / (s² + t), f3 = s² t / (s + t), and their partials:
+  const double s2 = sv * sv;
+  const double f1 = s2 * i1, f1s = sv * (sv + 2 * tv * tv) * i1 * i1, f1t = -2 * s2 * tv * i1 * i1;
+  const double f2 = s2 * tv * i2, f2s = 2 * sv * tv * tv * i2 * i2, f2t = s2 * s2 * i2 * i2;
+  const double f3 = s2 * tv * i3, f3s = sv * tv * (sv + 2 * tv) * i3 * i3, f3t = s2 * sv * i3 * i3;
+  const Vec3 r1 = c.a10 - c.b10, r2 = c.a01 - c.b01, r3 = c.a11 - c.b11;
+  const Vec3 q = c.a00 + c.b10 * sv + c.b01 * tv + c.b11 * (sv * tv) + r1 * f1 + r2 * f2 + r3 * f3;
+  const Vec3 qs = c.b10 + c.b11 * tv + r1 * f1s + r2 * f2s + r3 * f3s;
+  const Vec3 qt = c.b01 + c.b11 * sv + r1 * f1t + r2 * f2t + r3 * f3t;
+  return {q, qs * s.du + qt * t.du, qs * s.dv + qt * t.dv};
+}
+
 Patch::Patch(std::vector<LinearRibbon> ribbons, const SurfaceOptions &options, std::vector<ParabolicRibbon> parabolic)
     : tables_(std::make_shared<TableCache>()), domain_(static_cast<int>(ribbons.size())), ribbons_(std::move(ribbons)), parabolic_(std::move(parabolic)),
       options_(options) {
@@ -245,7 +265,7 @@ DualVec3 Patch::gregory(Dual u, Dual v) const {
     // I_{i,i−1} = R_{i−1}(s_{i−1}, s_i) + R_i(s_i, 1 − s_{i−1}) − Q(s_i, 1 − s_{i−1}) (eq. 17).
     const Dual si = s[i], ti = Dual(1.0) - s[prev];
     const DualVec3 interpolant = ribbonAt(left, s[prev], si) + ribbonAt(right, si, ti) -
-                                 gregoryCorrection(corners_[i], si, ti, si, ti);
+                                 gregoryCorrection(corners_[i], si, ti);
     result += b * interpolant;
   }
   return result;

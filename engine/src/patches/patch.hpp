@@ -196,6 +196,11 @@ struct Patch::TableCache {
 /// the (possibly reparameterized) coordinates multiplying the terms. Every
 /// term carries s^p t^q, so at the corner itself it is the corner point.
 DualVec3 gregoryCorrection(const CornerData &c, Dual s, Dual t, Dual gs, Dual gt);
+/// The same with gs = s, gt = t (the Gregory patch) in closed form: the
+/// polynomial part and the three rational terms s²/(s + t²), s²t/(s² + t),
+/// s²t/(s + t) with their partials, one division, the chain rule once.
+/// Within underflow of the corner it returns the general form's value.
+DualVec3 gregoryCorrection(const CornerData &c, Dual s, Dual t);
 
 
 /// The nine-term correction patch of paper 000 eq. 22:
