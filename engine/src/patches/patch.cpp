@@ -214,8 +214,15 @@ Patch::Patch(std::vector<LinearRibbon> ribbons, const SurfaceOptions &options, s
     if (options_.scheme == Scheme::GregoryG2)
       corners2_.push_back(cornerData2(parabolic_[domain_.wrap(i - 1)].end(), parabolic_[i].start()));
   }
-  if (options_.scheme == Scheme::GregoryG2)
-    for (int i = 0; i < domain_.sides(); ++i) cornerTerms2_.push_back(kernels::gregoryCornerTerms(cornerVectors(i)));
+  for (int i = 0; i < domain_.sides(); ++i) {
+    if (options_.scheme == Scheme::CompositeRibbon) {
+      kernelCorners_.push_back(kernelCorner(corners_[i]));
+      kernelEndCorners_.push_back(kernelCorner(endCorners_[i]));
+      continue;
+    }
+    kernelCorners_.push_back(cornerVectors(i));
+    if (options_.scheme == Scheme::GregoryG2) cornerTerms_.push_back(kernels::gregoryCornerTerms(kernelCorners_[i]));
+  }
 }
 
 DualVec3 Patch::evaluate(double u, double v) const {
@@ -328,7 +335,7 @@ DualVec3 Patch::gregoryG2(Dual u, Dual v) const {
     const Dual si = s[i], ti = Dual(1.0) - s[prev];
     // I_{i,i−1} = R_{i−1}(s_{i−1}, s_i) + R_i(s_i, 1 − s_{i−1}) − Q (eq. 17).
     const DualVec3 interpolant = ribbonAt(jet[prev], s[prev], si) + ribbonAt(jet[i], si, ti) -
-                                 gregoryCorrection2(cornerTerms2_[i], corners2_[i], si, ti);
+                                 gregoryCorrection2(cornerTerms_[i], corners2_[i], si, ti);
     result += b * interpolant;
   }
   return result;
@@ -464,7 +471,7 @@ void Patch::compositeRibbonBatch(std::size_t count, const T *const *s, const T *
     double *result[9];
     for (int j = 0; j < 9; ++j) result[j] = outputs.data() + static_cast<std::size_t>(j) * kBlock;
     if constexpr (slopes) {
-      kernels::compositeRibbonJets(m, in, t.compositeStart.data(), t.compositeEnd.data(),
+      kernels::compositeRibbonJets(m, in, kernelCorners_.data(), kernelEndCorners_.data(),
                                    {{result[0], result[1], result[2]}, {result[3], result[4], result[5]},
                                     {result[6], result[7], result[8]}});
       for (std::size_t k = 0; k < m; ++k)
@@ -472,7 +479,7 @@ void Patch::compositeRibbonBatch(std::size_t count, const T *const *s, const T *
                                  {result[3][k], result[4][k], result[5][k]},
                                  {result[6][k], result[7][k], result[8][k]}});
     } else {
-      kernels::compositeRibbonPositions(m, in, t.compositeStart.data(), t.compositeEnd.data(), result);
+      kernels::compositeRibbonPositions(m, in, kernelCorners_.data(), kernelEndCorners_.data(), result);
       for (std::size_t k = 0; k < m; ++k) emit(first + k, Vec3{result[0][k], result[1][k], result[2][k]});
     }
   }

@@ -19,15 +19,10 @@ inline namespace v1 {
 
 class EvaluationPlan;
 
-/// What the fast evaluation paths of a Gregory patch need besides a plan:
-/// each side's ribbon as a RibbonTable (P, T; G²: also C) and each corner's
-/// correction-patch vectors (G²: also in the positions kernel's form;
-/// composite-ribbon: each side's start and end corrections).
+/// What the fast evaluation paths of a patch need besides a plan and the
+/// patch's corner data: each side's ribbon as a RibbonTable (P, T; G²: also C).
 struct PatchTables {
   std::vector<RibbonTable> sides;
-  std::vector<kernels::GregoryCorner> corners;
-  std::vector<kernels::GregoryCornerTerms> cornerTerms; ///< G² only
-  std::vector<kernels::GregoryCorner> compositeStart, compositeEnd; ///< composite-ribbon only
   std::size_t memory() const;
 };
 
@@ -64,6 +59,9 @@ struct CornerData2 {
 struct CornerData {
   Vec3 a00, a10, a01, a11, b10, b01, b11;
 };
+
+/// c in the kernels' G¹ layout (a00, a10, b10, a01, b01, a11, b11).
+kernels::GregoryCorner kernelCorner(const CornerData &c);
 
 class Patch {
 public:
@@ -181,7 +179,11 @@ private:
   /// G²: the parabolic ribbons' corner data (cornerData2 of the ends meeting
   /// at corner i), computed once instead of at every point.
   std::vector<CornerData2> corners2_;
-  std::vector<kernels::GregoryCornerTerms> cornerTerms2_; ///< corners2_ rearranged (G²)
+  /// The same corner data as the kernels take it, computed once: the
+  /// Gregory schemes' correction patches (cornerVectors) and, for G², their
+  /// rearranged form; composite-ribbon: corners_ and endCorners_.
+  std::vector<kernels::GregoryCorner> kernelCorners_, kernelEndCorners_;
+  std::vector<kernels::GregoryCornerTerms> cornerTerms_;
   SurfaceOptions options_;
 };
 

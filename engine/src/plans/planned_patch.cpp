@@ -85,30 +85,32 @@ template <class T> struct CompositeInputs {
 
 } // namespace
 
-kernels::GregoryCorner Patch::cornerVectors(int i) const {
-  std::array<Vec3, kMaxCornerVectors> vectors{};
-  if (options_.scheme == Scheme::GregoryG2) {
-    const CornerData2 &c = corners2_[i];
-    const auto &a = c.a, &b = c.b;
-    int used = 0;
-    vectors[used++] = a[0][0];
-    for (int p = 0; p <= 2; ++p)
-      for (int r = 0; r <= 2; ++r)
-        if (p || r) vectors[used++] = a[p][r], vectors[used++] = b[p][r];
-  } else {
-    // corners_[i] {a00, a10, a01, a11, b10, b01, b11} in kernel order.
-    const CornerData &c = corners_[i];
-    vectors = {c.a00, c.a10, c.b10, c.a01, c.b01, c.a11, c.b11};
-  }
+kernels::GregoryCorner kernelCorner(const CornerData &c) {
+  // {a00, a10, a01, a11, b10, b01, b11} in kernel order.
+  const Vec3 vectors[7] = {c.a00, c.a10, c.b10, c.a01, c.b01, c.a11, c.b11};
   kernels::GregoryCorner corner{};
-  for (int c = 0; c < kMaxCornerVectors; ++c)
-    corner.v[c][0] = vectors[c].x, corner.v[c][1] = vectors[c].y, corner.v[c][2] = vectors[c].z;
+  for (int j = 0; j < 7; ++j)
+    corner.v[j][0] = vectors[j].x, corner.v[j][1] = vectors[j].y, corner.v[j][2] = vectors[j].z;
+  return corner;
+}
+
+kernels::GregoryCorner Patch::cornerVectors(int i) const {
+  if (options_.scheme != Scheme::GregoryG2) return kernelCorner(corners_[i]);
+  const CornerData2 &c = corners2_[i];
+  std::array<Vec3, kMaxCornerVectors> vectors{};
+  int used = 0;
+  vectors[used++] = c.a[0][0];
+  for (int p = 0; p <= 2; ++p)
+    for (int r = 0; r <= 2; ++r)
+      if (p || r) vectors[used++] = c.a[p][r], vectors[used++] = c.b[p][r];
+  kernels::GregoryCorner corner{};
+  for (int j = 0; j < kMaxCornerVectors; ++j)
+    corner.v[j][0] = vectors[j].x, corner.v[j][1] = vectors[j].y, corner.v[j][2] = vectors[j].z;
   return corner;
 }
 
 std::size_t PatchTables::memory() const {
-  std::size_t bytes = corners.size() * sizeof(kernels::GregoryCorner) +
-                      cornerTerms.size() * sizeof(kernels::GregoryCornerTerms);
+  std::size_t bytes = 0;
   for (const RibbonTable &t : sides) bytes += t.memory();
   return bytes;
 }
@@ -149,21 +151,6 @@ const PatchTables &Patch::tables() const {
         };
         t.sides.emplace_back(6, ribbons_[i].breakpoints(), exact);
       }
-      if (options_.scheme == Scheme::CompositeRibbon) {
-        // corners_ and endCorners_ {a00, a10, a01, a11, b10, b01, b11} in kernel order.
-        auto kernelOrder = [](const CornerData &c) {
-          const Vec3 vectors[7] = {c.a00, c.a10, c.b10, c.a01, c.b01, c.a11, c.b11};
-          kernels::GregoryCorner corner{};
-          for (int j = 0; j < 7; ++j)
-            corner.v[j][0] = vectors[j].x, corner.v[j][1] = vectors[j].y, corner.v[j][2] = vectors[j].z;
-          return corner;
-        };
-        t.compositeStart.push_back(kernelOrder(corners_[i]));
-        t.compositeEnd.push_back(kernelOrder(endCorners_[i]));
-        continue;
-      }
-      t.corners.push_back(cornerVectors(i));
-      if (g2) t.cornerTerms.push_back(kernels::gregoryCornerTerms(t.corners.back()));
     }
   });
   return tables_->tables;
@@ -239,14 +226,14 @@ void Patch::gregoryPositionsFrom(std::size_t count, const double *const *sideVal
       if (g2) in.C[i][c] = jets[6 + c];
     }
   }
-  const kernels::GregoryCornerTerms *terms = g2 ? t.cornerTerms.data() : nullptr;
+  const kernels::GregoryCornerTerms *terms = g2 ? cornerTerms_.data() : nullptr;
   if (out.points) {
     static_assert(sizeof(Vec3) == 3 * sizeof(double), "points are read as three doubles each");
     const double offset[3] = {out.offset.x, out.offset.y, out.offset.z};
-    kernels::gregoryPositionsInterleaved(count, in, t.corners.data(), &out.points[0].x, offset, kernels::kBestWidth,
-                                         terms);
+    kernels::gregoryPositionsInterleaved(count, in, kernelCorners_.data(), &out.points[0].x, offset,
+                                         kernels::kBestWidth, terms);
   } else {
-    kernels::gregoryPositions(count, in, t.corners.data(), out.arrays, kernels::kBestWidth, terms);
+    kernels::gregoryPositions(count, in, kernelCorners_.data(), out.arrays, kernels::kBestWidth, terms);
   }
 }
 
@@ -392,10 +379,6 @@ void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bo
   const int n = domain_.sides();
   const bool g2 = options_.scheme == Scheme::GregoryG2;
   const PatchTables *tables = useTables ? &this->tables() : nullptr;
-  std::array<kernels::GregoryCorner, kMaxSides> cornerStore;
-  const kernels::GregoryCorner *corners = tables ? tables->corners.data() : cornerStore.data();
-  if (!tables)
-    for (int i = 0; i < n; ++i) cornerStore[i] = cornerVectors(i);
   thread_local Scratch scratch;
   thread_local std::vector<RibbonJet> linearJets;
   thread_local std::vector<ParabolicJet> parabolicJets;
@@ -467,11 +450,11 @@ void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bo
         if (g2) in.values.C[i][c] = jets[i].C.c[c], in.dC[i][c] = jets[i].dC.c[c];
       }
     }
-    kernels::gregoryJets(m, in, corners,
+    kernels::gregoryJets(m, in, kernelCorners_.data(),
                          {{result[0], result[1], result[2]},
                           {result[3], result[4], result[5]},
                           {result[6], result[7], result[8]}},
-                         kernels::kBestWidth, tables && g2 ? tables->cornerTerms.data() : nullptr);
+                         kernels::kBestWidth, g2 ? cornerTerms_.data() : nullptr);
     for (std::size_t k = 0; k < m; ++k)
       out[first + k] = {{result[0][k], result[1][k], result[2][k]},
                         {result[3][k], result[4][k], result[5][k]},
