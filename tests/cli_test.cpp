@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <array>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -103,22 +104,50 @@ TEST_F(Cli, BadInputFailsClearlyAndWritesNothing) {
 // Outputs are named only when complete (writeFileAtomically): a tessellation
 // killed at any moment — while computing or while writing — leaves the
 // output folder exactly as it was, with no partial mesh and no temporary.
+namespace {
+std::string fileBytes(const fs::path &path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+} // namespace
+
 TEST_F(Cli, KilledTessellateLeavesNoFile) {
-  const fs::path out = dir / "big.obj";
-  for (int delayMs : {150, 1500, 4000, 6500}) { // the later ones land in the writing phase on this machine
-    const std::string resolution = "160";
-    const std::string outPath = out.string();
+  // One uninterrupted run first: its duration places the kills (tessellation
+  // early, the file's writing late, on any machine), and its file is the only
+  // thing a killed run may leave behind — the output is linked into place
+  // whole, so a kill just after that finds the complete file, never a part.
+  const fs::path work = dir / "work", reference = dir / "reference.obj", out = work / "big.obj";
+  fs::create_directories(work);
+  auto spawn = [&](const fs::path &target) {
+    const std::string outPath = target.string();
     const char *argv[] = {CURVENET_CLI, "tessellate", "builtin:ellipsoid-truncated-icosahedron", "--resolution",
-                          resolution.c_str(), "-o", outPath.c_str(), nullptr};
+                          "128",        "-q",         "-o",  outPath.c_str(), nullptr};
     pid_t pid = 0;
-    ASSERT_EQ(::posix_spawn(&pid, CURVENET_CLI, nullptr, nullptr, const_cast<char **>(argv), environ), 0);
-    ::usleep(static_cast<useconds_t>(delayMs) * 1000);
+    EXPECT_EQ(::posix_spawn(&pid, CURVENET_CLI, nullptr, nullptr, const_cast<char **>(argv), environ), 0);
+    return pid;
+  };
+  const auto start = std::chrono::steady_clock::now();
+  int status = 0;
+  ::waitpid(spawn(reference), &status, 0);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::string whole = fileBytes(reference);
+  for (double fraction : {0.05, 0.3, 0.6, 0.8, 0.95}) {
+    const pid_t pid = spawn(out);
+    ::usleep(static_cast<useconds_t>(fraction * seconds * 1e6));
     ::kill(pid, SIGKILL);
-    int status = 0;
     ::waitpid(pid, &status, 0);
-    if (WIFEXITED(status)) continue; // finished before the kill: nothing to learn from this delay
-    EXPECT_TRUE(fs::is_empty(dir)) << "after SIGKILL at " << delayMs << " ms the folder holds "
-                                   << fs::directory_iterator(dir)->path().filename();
+    if (WIFEXITED(status)) { // finished before the kill: nothing to learn from this one
+      fs::remove_all(work), fs::create_directories(work);
+      continue;
+    }
+    for (const auto &entry : fs::directory_iterator(work)) {
+      EXPECT_EQ(entry.path(), out) << "after SIGKILL at " << fraction << " of a run the folder holds "
+                                   << entry.path().filename();
+      EXPECT_TRUE(fileBytes(entry.path()) == whole) << "after SIGKILL at " << fraction << " of a run "
+                                                     << entry.path().filename() << " is not the whole file";
+    }
+    fs::remove_all(work), fs::create_directories(work);
   }
 }
 
@@ -130,13 +159,6 @@ TEST_F(Cli, WorkBeyondTheMachinesMemoryIsRefusedUpFront) {
   EXPECT_NE(run.err.find("--resolution 4000"), std::string::npos) << run.err;
   EXPECT_FALSE(fs::exists(out));
 }
-
-namespace {
-std::string fileBytes(const fs::path &path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-} // namespace
 
 // Determinism (issue: reliability, item 5): every command that writes a file
 // writes the same bytes for 1 and 2 threads, and again on a second run.
