@@ -225,7 +225,7 @@ Patch::Patch(std::vector<LinearRibbon> ribbons, const SurfaceOptions &options, s
   }
 }
 
-DualVec3 Patch::evaluate(double u, double v) const {
+void Patch::snapToCorner(double &u, double &v) const {
   // A point meant to be a corner but computed along a side (p_i + (p_{i+1} −
   // p_i)·1) misses it by a rounding error; there the blends of the far
   // corners are not exactly zero while their sweep parameters are singular
@@ -235,6 +235,10 @@ DualVec3 Patch::evaluate(double u, double v) const {
     const Vec2 &c = domain_.corner(i);
     if (std::abs(u - c.x) <= 1e-14 && std::abs(v - c.y) <= 1e-14) u = c.x, v = c.y;
   }
+}
+
+DualVec3 Patch::evaluate(double u, double v) const {
+  snapToCorner(u, v);
   const Dual du = Dual::u(u), dv = Dual::vCoord(v);
   switch (options_.scheme) {
   case Scheme::CompositeRibbon: return compositeRibbon(du, dv);
@@ -342,17 +346,20 @@ DualVec3 Patch::gregoryG2(Dual u, Dual v) const {
 }
 
 // Composite Ribbon patch, paper 002 Sec. 2.
-DualVec3 Patch::compositeRibbon(Dual u, Dual v) const {
+void Patch::compositeParameters(Dual u, Dual v, Dual *s, Dual *d, Dual *blend) const {
   const int n = domain_.sides();
-  std::array<Dual, kMaxSides> d, s;
-  domain_.wachspressDistances(u, v, d); // into a stack array: no allocation per point
+  domain_.wachspressDistances(u, v, std::span<Dual>(d, static_cast<std::size_t>(n)));
   for (int i = 0; i < n; ++i) s[i] = domain_.linearSweepSideParameter(i, u, v);
-
   // CR blends B_i = (D_{i,i−1} + D_{i,i+1}) / Σ_j D_{j,j−1}, D = ∏ d_j² over the others.
-  std::array<Dual, kMaxSides> squared, cornerProduct, blend;
+  std::array<Dual, kMaxSides> squared, cornerProduct;
   for (int i = 0; i < n; ++i) squared[i] = d[i] * d[i];
   const Dual total = domain_.cornerProducts(squared, cornerProduct); // cornerProduct[i] = D_{i,i−1}
   for (int i = 0; i < n; ++i) blend[i] = (cornerProduct[i] + cornerProduct[domain_.wrap(i + 1)]) / total;
+}
+
+DualVec3 Patch::compositeRibbon(Dual u, Dual v) const {
+  std::array<Dual, kMaxSides> s, d, blend; // stack arrays: no allocation per point
+  compositeParameters(u, v, s.data(), d.data(), blend.data());
   return compositeRibbonFrom(s.data(), d.data(), blend.data());
 }
 

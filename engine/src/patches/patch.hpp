@@ -128,6 +128,11 @@ public:
 private:
   DualVec3 gregory(Dual u, Dual v) const;
   DualVec3 compositeRibbon(Dual u, Dual v) const;
+  /// The composite-ribbon inputs at a domain point: every side's
+  /// linear-sweep parameter s, Wachspress distance d and CR blend.
+  void compositeParameters(Dual u, Dual v, Dual *s, Dual *d, Dual *blend) const;
+  /// (u, v) moved onto a corner when within 1e-14 of it (see evaluate()).
+  void snapToCorner(double &u, double &v) const;
   /// The CR formula from the side parameters, distances and blends of all
   /// sides, the ribbons evaluated exactly (compositeRibbonBatch: from tables).
   DualVec3 compositeRibbonFrom(const Dual *s, const Dual *d, const Dual *blends) const;

@@ -255,19 +255,10 @@ void Patch::evaluatePositions(std::size_t count, const double *u, const double *
       auto column = [&](int which, int i) { return columns.data() + (static_cast<std::size_t>(which) * n + i) * m; };
       for (std::size_t k = 0; k < m; ++k) {
         double x = u[first + k], y = v[first + k];
-        for (int i = 0; i < n; ++i) { // a corner within rounding: the exact corner, as evaluate() snaps
-          const Vec2 &c = domain_.corner(i);
-          if (std::abs(x - c.x) <= 1e-14 && std::abs(y - c.y) <= 1e-14) x = c.x, y = c.y;
-        }
-        const Dual pu = Dual::u(x), pv = Dual::vCoord(y);
-        std::array<Dual, kMaxSides> d, squared, product;
-        domain_.wachspressDistances(pu, pv, std::span<Dual>(d.data(), static_cast<std::size_t>(n)));
-        for (int i = 0; i < n; ++i) {
-          column(0, i)[k] = domain_.linearSweepSideParameter(i, pu, pv).v, column(1, i)[k] = d[i].v;
-          squared[i] = d[i] * d[i];
-        }
-        const Dual total = domain_.cornerProducts(squared, product); // product[i] = D_{i,i−1}
-        for (int i = 0; i < n; ++i) column(2, i)[k] = ((product[i] + product[domain_.wrap(i + 1)]) / total).v;
+        snapToCorner(x, y);
+        std::array<Dual, kMaxSides> s, d, b;
+        compositeParameters(Dual::u(x), Dual::vCoord(y), s.data(), d.data(), b.data());
+        for (int i = 0; i < n; ++i) column(0, i)[k] = s[i].v, column(1, i)[k] = d[i].v, column(2, i)[k] = b[i].v;
       }
       for (int i = 0; i < n; ++i) side[i] = column(0, i), distance[i] = column(1, i), blend[i] = column(2, i);
       compositeRibbonPositions(m, side.data(), distance.data(), blend.data(), out.from(first));
