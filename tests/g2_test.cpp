@@ -327,16 +327,36 @@ TEST(Ribbons, SuppliedCurveJetAndBatchesAgreeWithTheFence) {
   }
 }
 
-TEST(CorrectionPatch, RearrangedFormAgreesWithTheReference) {
-  // The evaluation form (Taylor part by Horner, closed-form partials of the
-  // rational terms, one division) against the reference (each W_pq as a
-  // weighted pair in Dual arithmetic), inside the corner's quadrant, on its
-  // two sides, near the corner and at it.
-  std::mt19937 rng(7);
+namespace {
+
+/// 2000 corner parameter pairs for the correction-patch tests: inside the
+/// corner's quadrant, on its two sides, near the corner and at it. Calls
+/// check(randomVector, s, t) with Dual s, t carrying random partials.
+template <class Check> void forCorrectionSamples(unsigned seed, const Check &check) {
+  std::mt19937 rng(seed);
   std::uniform_real_distribution<double> unit(0, 1), coordinate(-2, 2);
   auto randomVector = [&] { return Vec3{coordinate(rng), coordinate(rng), coordinate(rng)}; };
   const std::pair<double, double> fixed[] = {{0, 0.3}, {0.4, 0}, {1e-5, 2e-5}, {1e-3, 1e-4}, {0, 0}, {1, 1}};
   for (int trial = 0; trial < 2000; ++trial) {
+    const auto [sv, tv] = trial < 6 ? fixed[trial] : std::pair{unit(rng), unit(rng)};
+    const Dual s{sv, coordinate(rng), coordinate(rng)}, t{tv, coordinate(rng), coordinate(rng)};
+    check(randomVector, s, t);
+  }
+}
+
+void expectSameJet(const DualVec3 &fast, const DualVec3 &reference, Dual s, Dual t) {
+  const Vec3 parts[3][2] = {{fast.v, reference.v}, {fast.du, reference.du}, {fast.dv, reference.dv}};
+  for (const auto &[x, y] : parts)
+    EXPECT_LE(norm(x - y), 1e-12 * std::max({1.0, norm(x), norm(y)})) << "s = " << s.v << ", t = " << t.v;
+}
+
+} // namespace
+
+TEST(CorrectionPatch, RearrangedFormAgreesWithTheReference) {
+  // The evaluation form (Taylor part by Horner, closed-form partials of the
+  // rational terms, one division) against the reference (each W_pq as a
+  // weighted pair in Dual arithmetic).
+  forCorrectionSamples(7, [](auto &randomVector, Dual s, Dual t) {
     CornerData2 c{};
     kernels::GregoryCorner corner{};
     int slot = 0;
@@ -348,33 +368,14 @@ TEST(CorrectionPatch, RearrangedFormAgreesWithTheReference) {
     for (int p = 0; p <= 2; ++p)
       for (int r = 0; r <= 2; ++r)
         if (p || r) c.a[p][r] = randomVector(), c.b[p][r] = randomVector(), store(c.a[p][r]), store(c.b[p][r]);
-    const kernels::GregoryCornerTerms terms = kernels::gregoryCornerTerms(corner);
-    const auto [sv, tv] = trial < 6 ? fixed[trial] : std::pair{unit(rng), unit(rng)};
-    const Dual s{sv, coordinate(rng), coordinate(rng)}, t{tv, coordinate(rng), coordinate(rng)};
-    const DualVec3 fast = gregoryCorrection2(terms, c, s, t), reference = gregoryCorrection2(c, s, t);
-    const Vec3 parts[3][2] = {{fast.v, reference.v}, {fast.du, reference.du}, {fast.dv, reference.dv}};
-    for (const auto &[x, y] : parts) {
-      const double scale = std::max({1.0, norm(x), norm(y)});
-      EXPECT_LE(norm(x - y), 1e-12 * scale) << "s = " << sv << ", t = " << tv;
-    }
-  }
+    expectSameJet(gregoryCorrection2(kernels::gregoryCornerTerms(corner), c, s, t), gregoryCorrection2(c, s, t), s, t);
+  });
 }
 
 TEST(CorrectionPatch, G1ClosedFormAgreesWithTheGeneralForm) {
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> unit(0, 1), coordinate(-2, 2);
-  auto randomVector = [&] { return Vec3{coordinate(rng), coordinate(rng), coordinate(rng)}; };
-  const std::pair<double, double> fixed[] = {{0, 0.3}, {0.4, 0}, {1e-5, 2e-5}, {1e-3, 1e-4}, {0, 0}, {1, 1}};
-  for (int trial = 0; trial < 2000; ++trial) {
+  forCorrectionSamples(11, [](auto &randomVector, Dual s, Dual t) {
     const CornerData c{randomVector(), randomVector(), randomVector(), randomVector(),
                        randomVector(), randomVector(), randomVector()};
-    const auto [sv, tv] = trial < 6 ? fixed[trial] : std::pair{unit(rng), unit(rng)};
-    const Dual s{sv, coordinate(rng), coordinate(rng)}, t{tv, coordinate(rng), coordinate(rng)};
-    const DualVec3 fast = gregoryCorrection(c, s, t), reference = gregoryCorrection(c, s, t, s, t);
-    const Vec3 parts[3][2] = {{fast.v, reference.v}, {fast.du, reference.du}, {fast.dv, reference.dv}};
-    for (const auto &[x, y] : parts) {
-      const double scale = std::max({1.0, norm(x), norm(y)});
-      EXPECT_LE(norm(x - y), 1e-12 * scale) << "s = " << sv << ", t = " << tv;
-    }
-  }
+    expectSameJet(gregoryCorrection(c, s, t), gregoryCorrection(c, s, t, s, t), s, t);
+  });
 }
