@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "cli_support.hpp"
+#include "scratch.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -33,6 +34,7 @@
 using namespace curvenet;
 using curvenet::test::CliRun;
 using curvenet::test::runCli;
+using curvenet::test::ScratchDir;
 namespace fs = std::filesystem;
 
 namespace {
@@ -244,8 +246,8 @@ TEST(MeshApproximation, PointDeviationMeasuresDistance) {
 // mesh: the mesh vertices beyond its boundary are left out, the rest count.
 TEST(MeshApproximation, CommandLine) {
   if (std::string(CURVENET_CLI).empty()) GTEST_SKIP() << "the curvenet program is not built";
-  const fs::path dir = fs::temp_directory_path() / ("curvenet-apps-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const ScratchDir scratch("curvenet-apps");
+  const fs::path &dir = scratch.path();
   const std::string report = (dir / "r.json").string();
   const CliRun first = runCli("approximate builtin:pentagon builtin:pentagon -o " + (dir / "g2.obj").string() +
                               " --report " + report + " --write-inputs " + dir.string() + " --resolution 12");
@@ -272,7 +274,6 @@ TEST(MeshApproximation, CommandLine) {
                             (dir / "x.obj").string());
   EXPECT_EQ(bad.exitCode, 1);
   EXPECT_NE(bad.err.find("missing.obj"), std::string::npos);
-  fs::remove_all(dir);
 }
 
 // Master–slave with named masters (paper 000 Sec. 5.1): on torus-mixed every

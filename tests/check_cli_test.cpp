@@ -4,11 +4,13 @@
 #include <gtest/gtest.h>
 
 #include "cli_support.hpp"
+#include "scratch.hpp"
 #include <nlohmann/json.hpp>
 
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <fstream>
 #include <string>
 #include <sys/wait.h>
@@ -30,15 +32,10 @@ class CheckCli : public ::testing::Test {
 protected:
   void SetUp() override {
     if (std::string(CURVENET_CLI).empty()) GTEST_SKIP() << "the curvenet program is not built";
-    dir = fs::temp_directory_path() / ("curvenet-check-" + std::to_string(::getpid()) + "-" +
-                                       ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    scratch.emplace("curvenet-check");
+    dir = scratch->path();
   }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
+  std::optional<ScratchDir> scratch;
   fs::path dir;
 };
 

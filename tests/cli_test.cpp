@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "cli_support.hpp"
+#include "scratch.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -11,6 +12,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <fstream>
 #include <string>
 #include <csignal>
@@ -24,6 +26,7 @@ namespace fs = std::filesystem;
 using curvenet::test::CliRun;
 using curvenet::test::runCli;
 using curvenet::test::runCliOnTerminal;
+using curvenet::test::readFile;
 
 namespace {
 
@@ -31,13 +34,10 @@ class Cli : public ::testing::Test {
 protected:
   void SetUp() override {
     if (std::string(CURVENET_CLI).empty()) GTEST_SKIP() << "the command-line program is not built";
-    dir = fs::temp_directory_path() / ("curvenet-cli-" + std::to_string(::getpid()) + "-" +
-                                       ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir);
+    scratch.emplace("curvenet-cli");
+    dir = scratch->path();
   }
-  void TearDown() override {
-    if (!dir.empty()) fs::remove_all(dir);
-  }
+  std::optional<curvenet::test::ScratchDir> scratch;
   fs::path dir;
 };
 
@@ -104,13 +104,6 @@ TEST_F(Cli, BadInputFailsClearlyAndWritesNothing) {
 // Outputs are named only when complete (writeFileAtomically): a tessellation
 // killed at any moment — while computing or while writing — leaves the
 // output folder exactly as it was, with no partial mesh and no temporary.
-namespace {
-std::string fileBytes(const fs::path &path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-} // namespace
-
 TEST_F(Cli, KilledTessellateLeavesNoFile) {
   // One uninterrupted run first: its duration places the kills (tessellation
   // early, the file's writing late, on any machine), and its file is the only
@@ -131,7 +124,7 @@ TEST_F(Cli, KilledTessellateLeavesNoFile) {
   ::waitpid(spawn(reference), &status, 0);
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const std::string whole = fileBytes(reference);
+  const std::string whole = readFile(reference);
   for (double fraction : {0.05, 0.3, 0.6, 0.8, 0.95}) {
     const pid_t pid = spawn(out);
     ::usleep(static_cast<useconds_t>(fraction * seconds * 1e6));
@@ -144,7 +137,7 @@ TEST_F(Cli, KilledTessellateLeavesNoFile) {
     for (const auto &entry : fs::directory_iterator(work)) {
       EXPECT_EQ(entry.path(), out) << "after SIGKILL at " << fraction << " of a run the folder holds "
                                    << entry.path().filename();
-      EXPECT_TRUE(fileBytes(entry.path()) == whole) << "after SIGKILL at " << fraction << " of a run "
+      EXPECT_TRUE(readFile(entry.path()) == whole) << "after SIGKILL at " << fraction << " of a run "
                                                      << entry.path().filename() << " is not the whole file";
     }
     fs::remove_all(work), fs::create_directories(work);
@@ -177,7 +170,7 @@ TEST_F(Cli, EveryWritingCommandIsDeterministic) {
       const fs::path out = dir / (threads + "-" + std::to_string(outputs.size()) + "-" + c.file);
       const CliRun run = runCli(c.arguments + " --threads " + threads + " -o '" + out.string() + "'");
       ASSERT_EQ(run.exitCode, 0) << c.name << ": " << run.err;
-      outputs.push_back(fileBytes(out));
+      outputs.push_back(readFile(out));
       ASSERT_FALSE(outputs.back().empty()) << c.name;
     }
     EXPECT_TRUE(outputs[0] == outputs[1]) << c.name << ": 1 vs 2 threads";
@@ -189,7 +182,7 @@ TEST_F(Cli, EveryWritingCommandIsDeterministic) {
     const fs::path out = dir / ("tweak-" + std::to_string(run) + ".json");
     const CliRun r = runCli("check builtin:torus-mixed --samples 2 --resolution 2 --tweak -o '" + out.string() + "'");
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    tweaks.push_back(fileBytes(out));
+    tweaks.push_back(readFile(out));
   }
   EXPECT_TRUE(tweaks[0] == tweaks[1]);
 }

@@ -6,14 +6,13 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
 #include "curvenet/network.hpp"
 #include "curvenet/surface.hpp"
 #include "curvenet/tessellate.hpp"
+#include "scratch.hpp"
 
 using namespace curvenet;
 namespace fs = std::filesystem;
@@ -22,12 +21,7 @@ namespace {
 
 const fs::path regressions = fs::path(CURVENET_TEST_DATA_DIR).parent_path() / "fuzz" / "regressions";
 
-std::string readAll(const fs::path &path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::readFile;
 
 void exercise(const NetworkDescription &description, const std::string &name) {
   Network network;
@@ -66,7 +60,7 @@ TEST(FuzzRegressions, LoopFiles) {
   for (const fs::path &file : files) {
     SCOPED_TRACE(file.filename().string());
     try {
-      exercise(parseLop(readAll(file), file.string()), file.string());
+      exercise(parseLop(readFile(file), file.string()), file.string());
     } catch (const InputError &) {
     }
   }
@@ -76,7 +70,7 @@ TEST(FuzzRegressions, NativeFiles) {
   for (const fs::path &file : inputsOf("fuzz_network_json")) {
     SCOPED_TRACE(file.filename().string());
     try {
-      exercise(parseNetworkJson(readAll(file), file.string()), file.string());
+      exercise(parseNetworkJson(readFile(file), file.string()), file.string());
     } catch (const InputError &) {
     }
   }

@@ -9,19 +9,18 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include "curvenet/builtins.hpp"
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
 #include "curvenet/network.hpp"
+#include "scratch.hpp"
 
 namespace curvenet {
 inline namespace v1 {
@@ -44,37 +43,11 @@ template <typename F> InputError catchInputError(F &&f) {
 
 bool contains(const std::string &haystack, const std::string &needle) { return haystack.find(needle) != std::string::npos; }
 
-std::string readText(const fs::path &path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::readFile;
 
 // A scratch folder per test, removed afterwards.
-class TempDir {
-public:
-  TempDir() {
-    const auto *info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() /
-            ("curvenet-io-" + std::to_string(::getpid()) + "-" + info->test_suite_name() + "-" + info->name());
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path &path() const { return path_; }
-  std::vector<std::string> listing() const {
-    std::vector<std::string> names;
-    for (const auto &entry : fs::directory_iterator(path_)) names.push_back(entry.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-  }
-
-private:
-  fs::path path_;
+struct TempDir : test::ScratchDir {
+  TempDir() : ScratchDir("curvenet-io") {}
 };
 
 std::uint64_t bits(double v) { return std::bit_cast<std::uint64_t>(v); }
@@ -661,12 +634,12 @@ TEST(AtomicWrite, ExistingTargetIsUntouchedOnFailure) {
                                      throw std::runtime_error("writer failed");
                                    }),
                std::runtime_error);
-  EXPECT_EQ(readText(path), "original\n");
+  EXPECT_EQ(readFile(path), "original\n");
   EXPECT_EQ(dir.listing(), std::vector<std::string>{"out.obj"});
 
   // A success replaces it and leaves no temporary.
   writeFileAtomically(path.string(), [](std::ostream &out) { out << "replacement\n"; });
-  EXPECT_EQ(readText(path), "replacement\n");
+  EXPECT_EQ(readFile(path), "replacement\n");
   EXPECT_EQ(dir.listing(), std::vector<std::string>{"out.obj"});
 }
 
@@ -693,7 +666,7 @@ TEST(MeshWriters, ObjParsesBack) {
   const Mesh mesh = smallMesh();
   const fs::path path = dir.path() / "mesh.obj";
   writeMeshFile(mesh, path.string());
-  std::istringstream in(readText(path));
+  std::istringstream in(readFile(path));
   std::vector<Vec3> positions, normals;
   std::vector<std::array<std::uint32_t, 3>> triangles;
   for (std::string line; std::getline(in, line);) {
@@ -733,7 +706,7 @@ TEST(MeshWriters, PlyHeaderAndBinaryBody) {
   const Mesh mesh = smallMesh();
   const fs::path path = dir.path() / "mesh.PLY";
   writeMeshFile(mesh, path.string());
-  const std::string data = readText(path);
+  const std::string data = readFile(path);
   const std::string endHeader = "end_header\n";
   const auto headerEnd = data.find(endHeader);
   ASSERT_NE(headerEnd, std::string::npos);

@@ -7,15 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <OpenImageIO/imageio.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <functional>
-#include <sstream>
 
 #include "curvenet/builtins.hpp"
 #include "curvenet/curvature.hpp"
@@ -24,6 +21,7 @@
 #include "curvenet/surface.hpp"
 #include "curvenet/tessellate.hpp"
 #include "render.hpp"
+#include "scratch.hpp"
 
 using namespace curvenet;
 namespace fs = std::filesystem;
@@ -171,26 +169,10 @@ TEST_P(C0Join, BreaksThePhase) {
 INSTANTIATE_TEST_SUITE_P(Render, C0Join, ::testing::Values(render::Mode::Reflection, render::Mode::Isophote),
                          [](const ::testing::TestParamInfo<render::Mode> &p) { return render::modeName(p.param); });
 
-std::string readBytes(const fs::path &path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::readFile;
 
-class TempDir {
-public:
-  TempDir() {
-    const auto *info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() / ("curvenet-render-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  const fs::path &path() const { return path_; }
-
-private:
-  fs::path path_;
+struct TempDir : test::ScratchDir {
+  TempDir() : ScratchDir("curvenet-render") {}
 };
 
 template <typename T> bool sameBytes(const std::vector<T> &a, const std::vector<T> &b) {
@@ -224,7 +206,7 @@ TEST(Render, OneAndTwoThreadsGiveTheSameBytes) {
       const fs::path a = dir.path() / (std::string("one") + ext), b = dir.path() / (std::string("two") + ext);
       render::writeImage(one, a.string());
       render::writeImage(two, b.string());
-      EXPECT_EQ(readBytes(a), readBytes(b)) << ext;
+      EXPECT_EQ(readFile(a), readFile(b)) << ext;
     }
   }
 }
