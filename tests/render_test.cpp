@@ -9,6 +9,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -299,3 +300,18 @@ TEST(RenderCli, BadInputExitsNonZeroAndWritesNothing) {
 }
 
 } // namespace
+
+// OpenImageIO is opened with the first image (tools/render/image_codec.h):
+// the program itself must not need it, or every command would again pay
+// for its ~250 shared libraries at start-up.
+TEST(RenderCli, TheProgramStartsWithoutOpenImageIO) {
+  const std::string command = "ldd '" + std::string(CURVENET_CLI) + "' 2>&1";
+  FILE *pipe = ::popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string libraries;
+  char buffer[4096];
+  while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) libraries.append(buffer, n);
+  ASSERT_EQ(::pclose(pipe), 0) << libraries;
+  EXPECT_NE(libraries.find("libembree3"), std::string::npos) << libraries; // ldd listed the program's libraries
+  EXPECT_EQ(libraries.find("OpenImageIO"), std::string::npos) << libraries;
+}

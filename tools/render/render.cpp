@@ -1,11 +1,10 @@
-// Embree primary-ray renderer and OpenImageIO writer (see render.hpp).
+// Embree primary-ray renderer and image writer (see render.hpp).
 #include "render.hpp"
 
 #include "curvenet/io.hpp"
 
+#include <dlfcn.h>
 #include <embree3/rtcore.h>
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
 #include <tbb/blocked_range2d.h>
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
@@ -23,6 +22,7 @@
 #include <unistd.h>
 
 #include "curvenet/error.hpp"
+#include "image_codec.h"
 #include "parallel/fork_join.hpp"
 
 namespace curvenet::render {
@@ -362,6 +362,50 @@ std::string description(const Image &img) {
 
 } // namespace
 
+namespace {
+
+/// The encoder of image_codec.h, loaded once per process: from the install
+/// layout next to the running program (bin/ → lib/curvenet/), else from the
+/// build tree. A program without the module fails here, at its first image,
+/// with the places it looked; everything else it does is unaffected.
+curvenet_image_encode_fn imageEncoder(const std::string &path) {
+  struct Loaded {
+    curvenet_image_encode_fn encode = nullptr;
+    std::string error;
+  };
+  static const Loaded loaded = [] {
+    Loaded result;
+    std::vector<std::filesystem::path> candidates;
+    std::error_code ec;
+    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (!ec) candidates.push_back(self.parent_path() / CURVENET_IMAGE_MODULE_FROM_BINDIR);
+    candidates.push_back(CURVENET_IMAGE_MODULE_BUILT);
+    for (const std::filesystem::path &candidate : candidates) {
+      if (!std::filesystem::exists(candidate, ec)) {
+        result.error += (result.error.empty() ? "" : "; ") + candidate.lexically_normal().string() + ": no such file";
+        continue;
+      }
+      void *module = ::dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL);
+      if (!module) {
+        const char *why = ::dlerror();
+        result.error += (result.error.empty() ? "" : "; ") + std::string(why ? why : candidate.string());
+        continue;
+      }
+      // The module stays loaded for the rest of the process (never dlclose).
+      if (void *symbol = ::dlsym(module, CURVENET_IMAGE_ENCODE_SYMBOL)) {
+        result.encode = reinterpret_cast<curvenet_image_encode_fn>(symbol);
+        return result;
+      }
+      result.error += "; " + candidate.string() + " has no " CURVENET_IMAGE_ENCODE_SYMBOL;
+    }
+    return result;
+  }();
+  if (!loaded.encode) throw InputError(path, {}, "cannot load the image writer module (" + loaded.error + ")");
+  return loaded.encode;
+}
+
+} // namespace
+
 void writeImage(const Image &img, const std::string &path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char &c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -371,16 +415,23 @@ void writeImage(const Image &img, const std::string &path) {
   const std::size_t pixels = static_cast<std::size_t>(img.width) * img.height;
   CURVENET_CHECK(img.color.size() == 3 * pixels && img.phase.size() == pixels, "image arrays do not match its size");
 
-  OIIO::ImageSpec spec(img.width, img.height, exr ? 6 : 3, exr ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
   std::vector<float> floats;
   std::vector<unsigned char> bytes;
+  const std::string mode(modeName(img.mode)), text = description(img);
+  std::vector<curvenet_image_attribute> attributes;
+  const char *const channelNames[] = {"R", "G", "B", "A", "phase", "face"};
+  curvenet_image_request request{};
+  request.abi = CURVENET_IMAGE_ABI;
+  request.name = path.c_str();
+  request.width = img.width, request.height = img.height;
+  request.alpha_channel = -1;
   if (exr) {
-    spec.channelnames = {"R", "G", "B", "A", "phase", "face"};
-    spec.alpha_channel = 3;
-    spec.attribute("compression", "zip");
-    spec.attribute("curvenet:mode", modeName(img.mode));
-    spec.attribute("curvenet:stripes", static_cast<float>(img.stripes));
-    spec.attribute("curvenet:range", static_cast<float>(img.valueRange));
+    request.format = "openexr", request.channels = 6, request.float_pixels = 1;
+    request.channel_names = channelNames, request.alpha_channel = 3;
+    attributes = {{"compression", "zip", 0},
+                  {"curvenet:mode", mode.c_str(), 0},
+                  {"curvenet:stripes", nullptr, static_cast<float>(img.stripes)},
+                  {"curvenet:range", nullptr, static_cast<float>(img.valueRange)}};
     floats.resize(6 * pixels);
     for (std::size_t i = 0; i < pixels; ++i) {
       for (int c = 0; c < 3; ++c) floats[6 * i + c] = img.color[3 * i + c];
@@ -388,34 +439,33 @@ void writeImage(const Image &img, const std::string &path) {
       floats[6 * i + 4] = img.phase[i];
       floats[6 * i + 5] = static_cast<float>(img.face[i]);
     }
+    request.pixels = floats.data();
   } else {
+    request.format = "png", request.channels = 3, request.float_pixels = 0;
     bytes.resize(3 * pixels);
     for (std::size_t i = 0; i < 3 * pixels; ++i)
       bytes[i] = static_cast<unsigned char>(std::lround(255.f * srgbFromLinear(img.color[i])));
-    spec.attribute("oiio:ColorSpace", "sRGB");
+    request.pixels = bytes.data();
+    attributes.push_back({"oiio:ColorSpace", "sRGB", 0});
   }
-  spec.attribute("ImageDescription", description(img));
-  spec.attribute("Software", "curvenet");
+  attributes.push_back({"ImageDescription", text.c_str(), 0});
+  attributes.push_back({"Software", "curvenet", 0});
+  // The OpenEXR writer stamps the current time as capDate unless the spec
+  // names one: an empty date keeps the bytes the same on every run.
+  attributes.push_back({"DateTime", "", 0});
+  request.attribute_count = static_cast<int>(attributes.size());
+  request.attributes = attributes.data();
 
-  // The image is encoded into memory (an OIIO IOProxy) and handed to
-  // writeFileAtomically: it reaches the disk in one unnamed file that gets
-  // its name only when complete, exactly like the meshes.
+  // The image is encoded into memory and handed to writeFileAtomically: it
+  // reaches the disk in one unnamed file that gets its name only when
+  // complete, exactly like the meshes.
   std::vector<unsigned char> encoded;
-  {
-    auto out = OIIO::ImageOutput::create(exr ? "openexr" : "png");
-    if (!out) throw InputError(path, {}, "no " + std::string(exr ? "OpenEXR" : "PNG") + " writer in OpenImageIO: " + OIIO::geterror());
-    OIIO::Filesystem::IOVecOutput memory(encoded);
-    if (!out->supports("ioproxy") || !out->set_ioproxy(&memory))
-      throw InputError(path, {}, "the OpenImageIO writer cannot encode into memory");
-    // The OpenEXR writer stamps the current time as capDate unless the spec
-    // names one: an empty date keeps the bytes the same on every run.
-    spec.attribute("DateTime", "");
-    if (!out->open(path, spec)) throw InputError(path, {}, "cannot encode the image: " + out->geterror());
-    const bool ok = exr ? out->write_image(OIIO::TypeDesc::FLOAT, floats.data())
-                        : out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
-    if (!ok) throw InputError(path, {}, "encoding failed: " + out->geterror());
-    if (!out->close()) throw InputError(path, {}, "encoding failed: " + out->geterror());
-  }
+  auto append = [](void *context, const void *data, std::size_t size) {
+    auto &to = *static_cast<std::vector<unsigned char> *>(context);
+    to.insert(to.end(), static_cast<const unsigned char *>(data), static_cast<const unsigned char *>(data) + size);
+  };
+  char error[512] = "";
+  if (imageEncoder(path)(&request, append, &encoded, error, sizeof error) != 0) throw InputError(path, {}, error);
   writeFileAtomically(path, [&](std::ostream &file) {
     file.write(reinterpret_cast<const char *>(encoded.data()), static_cast<std::streamsize>(encoded.size()));
   });
