@@ -1,8 +1,7 @@
 #!/usr/bin/env bash
 # The whole test suite under AddressSanitizer + UndefinedBehaviorSanitizer,
-# then the parallel stages (tessellation, plan cache, embedding batches, the
-# renderer's ray casting) under ThreadSanitizer. Separate build folders;
-# incremental after the first run.
+# then again under ThreadSanitizer (with the renderer and the program, whose
+# tests run it). Separate build folders; incremental after the first run.
 #   bash tools/scripts/sanitize.sh            # both
 #   bash tools/scripts/sanitize.sh address    # ASan + UBSan only
 #   bash tools/scripts/sanitize.sh thread     # TSan only
@@ -34,9 +33,9 @@ if [[ $which == all || $which == thread ]]; then
   # Configured every time: a folder from before the renderer joined keeps
   # its tools switched off otherwise.
   cmake -S "$repo" -B "$dir" -G Ninja "${flags[@]}" -DCURVENET_SANITIZE=thread -DCURVENET_BUILD_TOOLS=ON >/dev/null
-  cmake --build "$dir" -j "$jobs" --target surface_test plans_test embed_test render_test curvenet tsan_canary
+  cmake --build "$dir" -j "$jobs"
   # TBB's own synchronization is not visible to TSan in the Debian build;
   # tests/tsan.supp lists those library frames, nothing of ours.
   TSAN_OPTIONS="halt_on_error=1 suppressions=$repo/tests/tsan.supp" \
-    ctest --test-dir "$dir" --output-on-failure -j "$jobs" -R "TsanCanary|G1Surface|Plan|Embed|Tessellation|Render"
+    ctest --test-dir "$dir" --output-on-failure -j "$jobs"
 fi
