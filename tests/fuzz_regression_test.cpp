@@ -32,7 +32,7 @@ void exercise(const NetworkDescription &description, const std::string &name) {
   }
   const std::vector<SurfaceOptions> variants = {
       {Scheme::GregoryG1, Sweepline::Radial}, {Scheme::GregoryG1, Sweepline::Hermite},
-      {Scheme::CompositeRibbon}, {Scheme::GregoryG2, Sweepline::Hermite}};
+      {Scheme::CompositeRibbon}, {Scheme::GregoryG2, Sweepline::Hermite}, {Scheme::BezierG1}};
   for (const SurfaceOptions &options : variants) {
     try {
       const Mesh mesh = tessellate(Surface::build(network, options), {3, 1});

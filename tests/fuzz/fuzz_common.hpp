@@ -1,5 +1,5 @@
 // What every harness does with a description that parsed: build the
-// topology, the G¹ surfaces of both schemes, and a coarse tessellation.
+// topology, the surface of every scheme, and a coarse tessellation.
 // Bad input must surface as InputError only; anything else (a crash, a
 // sanitizer report, an InternalError, a hang) is a finding.
 #pragma once
@@ -21,7 +21,7 @@ inline void exercise(const NetworkDescription &description) {
     for (const BSplineCurve &c : description.curves) controlPoints += c.controlPoints().size();
     if (controlPoints > 2000 || description.faces.size() > 64) return;
     const Network network = Network::build(description, "fuzz");
-    for (Scheme scheme : {Scheme::GregoryG1, Scheme::CompositeRibbon}) {
+    for (Scheme scheme : {Scheme::GregoryG1, Scheme::CompositeRibbon, Scheme::GregoryG2, Scheme::BezierG1}) {
       const Surface surface = Surface::build(network, {scheme});
       const Mesh mesh = tessellate(surface, {2, 1});
       if (mesh.positions.size() != mesh.normals.size()) std::abort();
