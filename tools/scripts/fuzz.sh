@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Bounded fuzzing of every reader and of the network builder (libFuzzer,
-# clang, ASan + UBSan), seeded from the built-ins and ../shared/data.
+# Bounded fuzzing of every reader, of the network builder and of model edits
+# (libFuzzer, clang, ASan + UBSan), seeded from the built-ins and ../shared/data.
 #   bash tools/scripts/fuzz.sh [SECONDS_PER_HARNESS]   # default 60
 # Long runs: pass e.g. 3600; the corpora grow in build-fuzz/corpus/ and are
 # reused by the next run. A finding stops the script with a non-zero exit and
@@ -24,13 +24,13 @@ CURVENET_EXTRA_PACKAGES="clang-14 libclang-rt-14-dev" bash "$repo/tools/scripts/
 cmake --build "$dir" -j "$(nproc)"
 
 corpus=$dir/corpus findings=$dir/findings
-mkdir -p "$corpus/fuzz_network_json" "$corpus/fuzz_lop" "$corpus/fuzz_network_builder" "$findings"
+mkdir -p "$corpus/fuzz_network_json" "$corpus/fuzz_lop" "$corpus/fuzz_network_builder" "$corpus/fuzz_model_edit" "$findings"
 "$dir/tests/fuzz/fuzz_seed_corpus" "$corpus/fuzz_network_json"
 shared=$repo/../shared/data/transfinite-models
 if [ -d "$shared" ]; then cp -f "$shared"/*.lop "$corpus/fuzz_lop/"; fi
 
 export ASAN_OPTIONS=detect_leaks=0
-harnesses=(fuzz_network_json fuzz_lop fuzz_network_builder)
+harnesses=(fuzz_network_json fuzz_lop fuzz_network_builder fuzz_model_edit)
 for harness in "${harnesses[@]}"; do
   regressions=$repo/tests/fuzz/regressions/$harness
   # Past findings first: they must all pass now.
