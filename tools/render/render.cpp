@@ -360,10 +360,6 @@ std::string description(const Image &img) {
   return d;
 }
 
-} // namespace
-
-namespace {
-
 /// The encoder of image_codec.h, loaded once per process: from the install
 /// layout next to the running program (bin/ → lib/curvenet/), else from the
 /// build tree. A program without the module fails here, at its first image,
@@ -375,6 +371,7 @@ curvenet_image_encode_fn imageEncoder(const std::string &path) {
   };
   static const Loaded loaded = [] {
     Loaded result;
+    auto failed = [&](const std::string &why) { result.error += (result.error.empty() ? "" : "; ") + why; };
     std::vector<std::filesystem::path> candidates;
     std::error_code ec;
     const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
@@ -382,13 +379,13 @@ curvenet_image_encode_fn imageEncoder(const std::string &path) {
     candidates.push_back(CURVENET_IMAGE_MODULE_BUILT);
     for (const std::filesystem::path &candidate : candidates) {
       if (!std::filesystem::exists(candidate, ec)) {
-        result.error += (result.error.empty() ? "" : "; ") + candidate.lexically_normal().string() + ": no such file";
+        failed(candidate.lexically_normal().string() + ": no such file");
         continue;
       }
       void *module = ::dlopen(candidate.c_str(), RTLD_NOW | RTLD_LOCAL);
       if (!module) {
         const char *why = ::dlerror();
-        result.error += (result.error.empty() ? "" : "; ") + std::string(why ? why : candidate.string());
+        failed(why ? why : candidate.string());
         continue;
       }
       // The module stays loaded for the rest of the process (never dlclose).
@@ -396,7 +393,7 @@ curvenet_image_encode_fn imageEncoder(const std::string &path) {
         result.encode = reinterpret_cast<curvenet_image_encode_fn>(symbol);
         return result;
       }
-      result.error += "; " + candidate.string() + " has no " CURVENET_IMAGE_ENCODE_SYMBOL;
+      failed(candidate.string() + " has no " CURVENET_IMAGE_ENCODE_SYMBOL);
     }
     return result;
   }();
