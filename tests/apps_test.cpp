@@ -246,7 +246,7 @@ TEST(MeshApproximation, PointDeviationMeasuresDistance) {
 // mesh: the mesh vertices beyond its boundary are left out, the rest count.
 TEST(MeshApproximation, CommandLine) {
   if (std::string(CURVENET_CLI).empty()) GTEST_SKIP() << "the curvenet program is not built";
-  const ScratchDir scratch("curvenet-apps");
+  const ScratchDir scratch;
   const fs::path &dir = scratch.path();
   const std::string report = (dir / "r.json").string();
   const CliRun first = runCli("approximate builtin:pentagon builtin:pentagon -o " + (dir / "g2.obj").string() +

@@ -10,8 +10,8 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
-#include <optional>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -32,7 +32,7 @@ class CheckCli : public ::testing::Test {
 protected:
   void SetUp() override {
     if (std::string(CURVENET_CLI).empty()) GTEST_SKIP() << "the curvenet program is not built";
-    scratch.emplace("curvenet-check");
+    scratch.emplace();
     dir = scratch->path();
   }
   std::optional<ScratchDir> scratch;

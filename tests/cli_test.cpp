@@ -12,8 +12,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <optional>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <csignal>
 #include <spawn.h>
@@ -34,7 +34,7 @@ class Cli : public ::testing::Test {
 protected:
   void SetUp() override {
     if (std::string(CURVENET_CLI).empty()) GTEST_SKIP() << "the command-line program is not built";
-    scratch.emplace("curvenet-cli");
+    scratch.emplace();
     dir = scratch->path();
   }
   std::optional<curvenet::test::ScratchDir> scratch;

@@ -44,11 +44,7 @@ template <typename F> InputError catchInputError(F &&f) {
 bool contains(const std::string &haystack, const std::string &needle) { return haystack.find(needle) != std::string::npos; }
 
 using test::readFile;
-
-// A scratch folder per test, removed afterwards.
-struct TempDir : test::ScratchDir {
-  TempDir() : ScratchDir("curvenet-io") {}
-};
+using test::ScratchDir;
 
 std::uint64_t bits(double v) { return std::bit_cast<std::uint64_t>(v); }
 
@@ -134,7 +130,7 @@ TEST(NativeFormat, RoundTripIsExact) {
 }
 
 TEST(NativeFormat, RoundTripThroughAFile) {
-  TempDir dir;
+  ScratchDir dir;
   const NetworkDescription original = handBuiltDescription();
   const fs::path path = dir.path() / "net.json";
   writeFileAtomically(path.string(), [&](std::ostream &out) { out << networkToJson(original); });
@@ -509,7 +505,7 @@ TEST(Files, UnknownExtension) {
 }
 
 TEST(Files, MissingFile) {
-  TempDir dir;
+  ScratchDir dir;
   const std::string path = (dir.path() / "absent.json").string();
   InputError e = catchInputError([&] { readNetworkFile(path); });
   EXPECT_EQ(e.file(), path);
@@ -546,7 +542,7 @@ TEST(Files, BuiltinSurvivesTheNativeFormat) {
 }
 
 TEST(Files, JsonNameDefaultsToStem) {
-  TempDir dir;
+  ScratchDir dir;
   const fs::path path = dir.path() / "nameless.json";
   writeFileAtomically(path.string(), [](std::ostream &out) { out << withCurve(goodCurve); });
   EXPECT_EQ(readNetworkFile(path.string()).name, "nameless");
@@ -613,7 +609,7 @@ TEST(NetworkBuildErrors, SegmentUsedByThreeFaces) {
 // ---------------------------------------------------------------- atomic writes
 
 TEST(AtomicWrite, ThrowingWriterLeavesNothing) {
-  TempDir dir;
+  ScratchDir dir;
   const std::string path = (dir.path() / "out.obj").string();
   EXPECT_THROW(writeFileAtomically(path,
                                    [](std::ostream &out) {
@@ -625,7 +621,7 @@ TEST(AtomicWrite, ThrowingWriterLeavesNothing) {
 }
 
 TEST(AtomicWrite, ExistingTargetIsUntouchedOnFailure) {
-  TempDir dir;
+  ScratchDir dir;
   const fs::path path = dir.path() / "out.obj";
   writeFileAtomically(path.string(), [](std::ostream &out) { out << "original\n"; });
   EXPECT_THROW(writeFileAtomically(path.string(),
@@ -644,7 +640,7 @@ TEST(AtomicWrite, ExistingTargetIsUntouchedOnFailure) {
 }
 
 TEST(AtomicWrite, UnwritableFolderIsAnInputError) {
-  TempDir dir;
+  ScratchDir dir;
   const std::string path = (dir.path() / "missing-folder" / "out.obj").string();
   InputError e = catchInputError([&] { writeFileAtomically(path, [](std::ostream &out) { out << "x"; }); });
   EXPECT_EQ(e.file(), path);
@@ -662,7 +658,7 @@ Mesh smallMesh() {
 }
 
 TEST(MeshWriters, ObjParsesBack) {
-  TempDir dir;
+  ScratchDir dir;
   const Mesh mesh = smallMesh();
   const fs::path path = dir.path() / "mesh.obj";
   writeMeshFile(mesh, path.string());
@@ -702,7 +698,7 @@ TEST(MeshWriters, ObjParsesBack) {
 }
 
 TEST(MeshWriters, PlyHeaderAndBinaryBody) {
-  TempDir dir;
+  ScratchDir dir;
   const Mesh mesh = smallMesh();
   const fs::path path = dir.path() / "mesh.PLY";
   writeMeshFile(mesh, path.string());
@@ -759,7 +755,7 @@ TEST(MeshWriters, MeshWithoutNormals) {
 }
 
 TEST(MeshWriters, UnknownExtension) {
-  TempDir dir;
+  ScratchDir dir;
   const std::string path = (dir.path() / "mesh.stl").string();
   InputError e = catchInputError([&] { writeMeshFile(smallMesh(), path); });
   EXPECT_EQ(e.file(), path);

@@ -171,10 +171,7 @@ INSTANTIATE_TEST_SUITE_P(Render, C0Join, ::testing::Values(render::Mode::Reflect
                          [](const ::testing::TestParamInfo<render::Mode> &p) { return render::modeName(p.param); });
 
 using test::readFile;
-
-struct TempDir : test::ScratchDir {
-  TempDir() : ScratchDir("curvenet-render") {}
-};
+using test::ScratchDir;
 
 template <typename T> bool sameBytes(const std::vector<T> &a, const std::vector<T> &b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
@@ -188,7 +185,7 @@ TEST(Render, OneAndTwoThreadsGiveTheSameBytes) {
   const Mesh mesh = tessellate(s, t);
   std::vector<double> mean;
   for (const CurvatureSample &c : meshCurvature(s, mesh)) mean.push_back(c.mean);
-  TempDir dir;
+  ScratchDir dir;
   for (render::Mode mode : {render::Mode::Reflection, render::Mode::Mean}) {
     render::RenderOptions o;
     o.width = 200;
@@ -213,7 +210,7 @@ TEST(Render, OneAndTwoThreadsGiveTheSameBytes) {
 }
 
 TEST(Render, ExrCarriesPhaseCoverageAndRange) {
-  TempDir dir;
+  ScratchDir dir;
   const Mesh mesh = twoPatchMesh(c2Left, g1Right, false, 40, 12);
   std::vector<double> values(mesh.positions.size());
   for (std::size_t v = 0; v < values.size(); ++v) values[v] = mesh.positions[v].x; // −1 … 1
@@ -256,7 +253,7 @@ TEST(Render, BadOptionsAreInputErrors) {
   o = {};
   o.mode = render::Mode::Gauss; // no values
   EXPECT_THROW(render::renderMesh(mesh, o), InputError);
-  TempDir dir;
+  ScratchDir dir;
   render::Image img = render::renderMesh(mesh, render::RenderOptions{.width = 8, .height = 8});
   EXPECT_THROW(render::writeImage(img, (dir.path() / "x.jpg").string()), InputError);
   EXPECT_TRUE(fs::is_empty(dir.path()));
@@ -269,7 +266,7 @@ int runCli(const std::string &args) {
 }
 
 TEST(RenderCli, WritesAReadablePng) {
-  TempDir dir;
+  ScratchDir dir;
   const fs::path out = dir.path() / "pentagon.png";
   ASSERT_EQ(0, runCli("render builtin:pentagon -o " + out.string() +
                       " --scheme gregory-g1 --mode reflection --size 160x120 --resolution 12 --boundaries"));
@@ -289,7 +286,7 @@ TEST(RenderCli, WritesAReadablePng) {
 }
 
 TEST(RenderCli, BadInputExitsNonZeroAndWritesNothing) {
-  TempDir dir;
+  ScratchDir dir;
   const std::string out = (dir.path() / "x.png").string();
   EXPECT_NE(0, runCli("render builtin:pentagon -o " + out + " --mode bogus"));
   EXPECT_NE(0, runCli("render builtin:pentagon -o " + out + " --scheme bogus"));

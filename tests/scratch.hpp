@@ -14,13 +14,13 @@
 
 namespace curvenet::test {
 
-/// An empty folder of the running test's own, named after the suite, the
-/// process and the test (so that parallel ctest processes never share one),
+/// An empty folder of the running test's own, named after the process, the
+/// suite and the test (so that parallel ctest processes never share one),
 /// removed with everything in it when the object goes — also when a failed
 /// assertion leaves the test early.
 class ScratchDir {
 public:
-  explicit ScratchDir(const std::string &prefix) {
+  explicit ScratchDir(const std::string &prefix = "curvenet") {
     const auto *info = ::testing::UnitTest::GetInstance()->current_test_info();
     std::string name = prefix + "-" + std::to_string(::getpid());
     if (info) name += std::string("-") + info->test_suite_name() + "-" + info->name();
