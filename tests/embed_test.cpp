@@ -314,3 +314,49 @@ TEST(Embed, AnEditUpdatesTheCachedTessellationOnItsFacesOnly) {
   EXPECT_EQ(model->mesh().normals, fresh->mesh().normals);
   EXPECT_EQ(model->mesh().triangles, fresh->mesh().triangles);
 }
+
+// Connection curves split a concave face (and a face with a hole) into
+// several: the model's faces are the network's, not the description's. An
+// edit that changes the split renumbers the faces: with one option set it is
+// a fresh build, with per-face options it is refused and nothing changes.
+TEST(Embed, FacesSplitByConnectionCurvesAreTheModelsFaces) {
+  for (const char *name : {"concave-L", "ring"}) {
+    SCOPED_TRACE(name);
+    auto model = Model::load(std::string("builtin:") + name);
+    ASSERT_TRUE(model.ok()) << model.status().toString();
+    const Network network = Network::build(builtinNetwork(name));
+    ASSERT_GT(network.faces().size(), builtinNetwork(name).faces.size());
+    ASSERT_EQ(model->faceCount(), static_cast<int>(network.faces().size()));
+    const Surface surface = Surface::build(network, {});
+    for (int f = 0; f < model->faceCount(); ++f)
+      for (const Vec2 &uv : domainPoints(*model, f, 10, 3))
+        ASSERT_TRUE(samePoint(*model->evaluate(f, uv), surface.evaluate(f, uv))) << "face " << f;
+    EXPECT_TRUE(model->tessellate({.resolution = 4}).ok());
+  }
+
+  // concave-L's concave corner is where curve 2 ends and curve 3 starts.
+  // Turning curve 3's start tangent from +y to down-left makes the corner
+  // convex: the loop is then one 6-sided face.
+  auto model = Model::load("builtin:concave-L");
+  auto perFace = Model::load("builtin:concave-L");
+  ASSERT_TRUE(model.ok() && perFace.ok());
+  ASSERT_EQ(model->faceCount(), 2);
+  std::vector<Vec3> points = model->description().curves[3].controlPoints();
+  const double step = norm(points[1] - points[0]);
+  points[1] = points[0] + Vec3{-step, -0.3 * step, 0};
+
+  ASSERT_TRUE(perFace->setFaceOptions(1, {.scheme = Scheme::GregoryG2}).ok());
+  const SurfacePoint kept = *perFace->evaluate(1, {0.1, 0.1});
+  const Status refused = perFace->setControlPoints(3, points);
+  EXPECT_EQ(refused.code, StatusCode::InvalidInput) << refused.toString();
+  EXPECT_EQ(perFace->faceCount(), 2);
+  EXPECT_TRUE(samePoint(*perFace->evaluate(1, {0.1, 0.1}), kept));
+
+  ASSERT_TRUE(model->setControlPoints(3, points).ok());
+  ASSERT_EQ(model->faceCount(), 1);
+  EXPECT_EQ(model->domainSides(0), 6);
+  auto fresh = Model::build(model->description());
+  ASSERT_TRUE(fresh.ok());
+  for (const Vec2 &uv : domainPoints(*model, 0, 20, 5))
+    ASSERT_TRUE(samePoint(*model->evaluate(0, uv), *fresh->evaluate(0, uv)));
+}

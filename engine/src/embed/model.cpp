@@ -144,14 +144,18 @@ struct Model::Impl {
   std::optional<Mesh> whole;
   TessellationOptions wholeOptions;
 
-  /// Network and surfaces for `description` with per-face `options`. Groups
-  /// of `reuse` (same network) whose options recur are kept, not rebuilt.
+  /// Network and surfaces for `description` with `options` per face of the
+  /// network, or one entry for every face (a fresh build: the network may
+  /// have more faces than the description, where connection curves split a
+  /// concave face). Groups of `reuse` (same network) whose options recur are
+  /// kept, not rebuilt.
   static std::unique_ptr<Impl> assemble(NetworkDescription description, std::vector<SurfaceOptions> options,
                                         const Impl *reuse) {
     auto impl = std::make_unique<Impl>();
     impl->network = reuse ? reuse->network : Network::build(description);
     impl->description = std::move(description);
     const int faces = static_cast<int>(impl->network.faces().size());
+    if (options.size() == 1) options.resize(static_cast<std::size_t>(faces), options.front());
     CURVENET_CHECK(static_cast<int>(options.size()) == faces, "options for every face");
     impl->faceOptions = std::move(options);
     for (int f = 0; f < faces; ++f) {
@@ -179,6 +183,17 @@ struct Model::Impl {
   static std::unique_ptr<Impl> edited(const Impl &old, NetworkDescription description) {
     auto impl = std::make_unique<Impl>();
     impl->network = Network::build(description);
+    if (impl->network.faces().size() != old.faceGroup.size()) {
+      // The edit changed how connection curves split a concave face: the
+      // faces are numbered anew, so per-face options have nothing to follow.
+      // With one option set for every face that is no obstacle (a full build).
+      if (old.groups.size() == 1) return assemble(std::move(description), {old.groups[0].options}, nullptr);
+      throw InputError({}, "faces",
+                       "the edit changes how concave faces are split (" + std::to_string(old.faceGroup.size()) +
+                           " faces before, " + std::to_string(impl->network.faces().size()) +
+                           " after), so the per-face options no longer match the faces; set one option set for "
+                           "every face before such an edit");
+    }
     impl->description = std::move(description);
     impl->faceOptions = old.faceOptions;
     impl->faceGroup = old.faceGroup;
@@ -322,8 +337,7 @@ Model::~Model() = default;
 
 Result<Model> Model::build(NetworkDescription description, const SurfaceOptions &options) {
   return guarded<Result<Model>>([&]() -> Result<Model> {
-    const std::size_t faces = description.faces.size();
-    return Model(Impl::assemble(std::move(description), std::vector<SurfaceOptions>(faces, options), nullptr));
+    return Model(Impl::assemble(std::move(description), {options}, nullptr));
   });
 }
 
