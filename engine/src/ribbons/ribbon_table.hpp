@@ -65,7 +65,8 @@ private:
                              : scaled < static_cast<double>(cells_) ? static_cast<std::size_t>(scaled)
                                                                     : cells_ - 1;
     std::uint32_t i = cellFirst_[cell];
-    for (int q = 0; q < steps_; ++q) i += (i + 1 < starts_.size()) & (ends_[i] < s);
+    for (int q = 0; q < steps_; ++q)
+      i += static_cast<std::uint32_t>(i + 1 < starts_.size()) & static_cast<std::uint32_t>(ends_[i] < s);
     return i;
   }
 
