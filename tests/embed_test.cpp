@@ -7,6 +7,7 @@
 #include <set>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -359,4 +360,22 @@ TEST(Embed, FacesSplitByConnectionCurvesAreTheModelsFaces) {
   ASSERT_TRUE(fresh.ok());
   for (const Vec2 &uv : domainPoints(*model, 0, 20, 5))
     ASSERT_TRUE(samePoint(*model->evaluate(0, uv), *fresh->evaluate(0, uv)));
+}
+
+// A tessellation that could not fit in memory is refused before any work,
+// with the estimate, and the model keeps its mesh: an embedding program gets
+// a status rather than the system's out-of-memory killer.
+TEST(Embed, TessellationsBeyondTheMachinesMemoryAreRefused) {
+  auto model = Model::fromLoop(pentagonLoop(0.3));
+  ASSERT_TRUE(model.ok());
+  const Result<MeshSize> kept = model->tessellate({.resolution = 4});
+  ASSERT_TRUE(kept.ok());
+  for (int resolution : {40000, 1 << 24, std::numeric_limits<int>::max()}) {
+    const Result<MeshSize> refused = model->tessellate({.resolution = resolution});
+    ASSERT_FALSE(refused.ok()) << resolution;
+    EXPECT_EQ(refused.status().code, StatusCode::OutOfMemory) << refused.status().toString();
+    EXPECT_NE(refused.status().toString().find("GiB"), std::string::npos) << refused.status().toString();
+  }
+  EXPECT_EQ(model->mesh().positions.size(), kept->vertices);
+  EXPECT_EQ(model->mesh().triangles.size(), kept->triangles);
 }

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <random>
 
@@ -247,6 +248,23 @@ TEST(G1Surface, TessellationBytesDoNotDependOnThreads) {
     EXPECT_EQ(std::memcmp(one.normals.data(), two.normals.data(), one.normals.size() * sizeof(Vec3)), 0);
     EXPECT_EQ(one.triangles, two.triangles);
   }
+}
+
+// Mesh vertex indices are 32-bit: a resolution whose mesh would need more
+// is refused up front (before the int arithmetic of the layout could
+// overflow, and before any allocation), and the estimate used for memory
+// checks saturates instead of wrapping.
+TEST(G1Surface, ResolutionsBeyondThirtyTwoBitMeshesAreRefused) {
+  const Surface surface = Surface::build(Network::build(builtinNetwork("pentagon")), {});
+  // One pentagon: 1 + 5 (r − 1) + 5 (r − 1)(r − 2) / 2 interior samples,
+  // 5 r boundary samples: 40 000 fits 32 bits, 42 000 does not.
+  EXPECT_EQ(faceInteriorPoints(surface, 3), 1u + 5 * 2 + 5 * 2 * 1 / 2);
+  EXPECT_EQ(estimateMeshVertices(surface, 40000), 5u + 5 * 40000 + 1 + 5 * 39999 + 5ull * 39999 * 39998 / 2);
+  for (int r : {42000, 1 << 20, std::numeric_limits<int>::max()}) {
+    EXPECT_THROW(tessellate(surface, {r, 1}), InputError) << r;
+    EXPECT_THROW(faceInteriorPoints(surface, r), InputError) << r;
+  }
+  EXPECT_GT(estimateMeshVertices(surface, std::numeric_limits<int>::max()), 1ull << 62);
 }
 
 TEST(G1Surface, ReferenceDeviationShrinksWithSmallerPatches) {

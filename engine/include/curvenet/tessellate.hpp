@@ -54,8 +54,14 @@ PlanCacheStats evaluationPlanCache();
 /// next tessellation builds them again — a cold start. Thread-safe.
 void clearEvaluationPlans();
 
-/// Vertices per face interior + boundaries, a quick estimate for memory checks.
+/// Vertices per face interior + boundaries, a quick estimate for memory
+/// checks (saturates instead of overflowing for huge resolutions).
 std::size_t estimateMeshVertices(const Surface &surface, int resolution);
+
+/// Bytes of memory the system has available for new work (Linux
+/// MemAvailable, else the physical memory; 0 when unknown): what memory
+/// checks compare estimates with.
+std::size_t availableMemory();
 
 /// Tessellates every face (see the file comment). Parallel over faces and,
 /// for large faces, over tiles of samples (explicit grain sizes); small

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <new>
 #include <unordered_map>
@@ -465,6 +466,19 @@ Result<MeshSize> Model::tessellate(const TessellationOptions &options, int face)
     return failure(StatusCode::InvalidArgument, faceName(face), "no such face");
   return guarded<Result<MeshSize>>([&]() -> Result<MeshSize> {
     Impl &m = *impl_;
+    // Refused before any work when it could not fit in memory, as the
+    // command line does: the caller gets a status instead of the system's
+    // out-of-memory killer. Per vertex: positions, normals and about two
+    // triangles (72 B) for each surface's mesh, the merged whole mesh and
+    // the kept copy, plus the tessellator's staging (~32 B).
+    const double vertices = static_cast<double>(estimateMeshVertices(m.groups[0].surface, options.resolution));
+    const double bytes = vertices * (72.0 * static_cast<double>(m.groups.size() + 2) + 32);
+    if (const double available = static_cast<double>(availableMemory()); available > 0 && bytes > 0.8 * available) {
+      char message[160];
+      std::snprintf(message, sizeof message, "%d needs about %.3g GiB of memory but only %.3g GiB is available",
+                    options.resolution, bytes / 0x1p30, available / 0x1p30);
+      return failure(StatusCode::OutOfMemory, "resolution", message);
+    }
     if (!m.whole || m.wholeOptions.resolution != options.resolution ||
         m.wholeOptions.recordDomainPoints != options.recordDomainPoints) {
       m.whole.reset();

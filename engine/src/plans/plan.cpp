@@ -20,7 +20,10 @@ namespace curvenet {
 inline namespace v1 {
 
 std::uint32_t faceInteriorCount(int n, int r) {
-  return static_cast<std::uint32_t>(1 + n * (r - 1) + n * (r - 1) * (r - 2) / 2);
+  // In 64 bits: n (r − 1)(r − 2) passes 2³¹ long before the count leaves
+  // 32 bits (the tessellator refuses resolutions whose counts would).
+  const std::uint64_t m = static_cast<std::uint64_t>(r - 1), sides = static_cast<std::uint64_t>(n);
+  return static_cast<std::uint32_t>(1 + sides * m + sides * (m * (m - 1) / 2));
 }
 
 PlanKey planKey(const SurfaceOptions &options, int sides, int resolution) {

@@ -99,7 +99,8 @@ std::shared_ptr<const EvaluationPlan> evaluationPlan(const PlanKey &key);
 /// The plan key of a transfinite surface's face with `sides` domain sides.
 PlanKey planKey(const SurfaceOptions &options, int sides, int resolution);
 
-/// Interior samples of an n-gon face at resolution r (the tessellator's count).
+/// Interior samples of an n-gon face at resolution r (the tessellator's
+/// count), for resolutions the tessellator accepts (checkResolution).
 std::uint32_t faceInteriorCount(int n, int r);
 
 } // namespace v1

@@ -12,7 +12,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
 #include <optional>
+#include <string>
+
+#include <unistd.h>
 
 #include "bezier/bezier_surface.hpp"
 #include "curvenet/error.hpp"
@@ -167,10 +173,38 @@ template <class Run> void forEachTile(const std::vector<Tile> &tiles, std::size_
                         });
 }
 
+/// Vertices of the whole mesh at `resolution` (faceInteriorCount, and r per
+/// segment: one more than it has), in floating point so that no resolution
+/// overflows it.
+double meshVertices(const Surface &surface, int resolution) {
+  const double r = resolution;
+  double count = static_cast<double>(surface.network().vertices().size()) +
+                 static_cast<double>(surface.network().segments().size()) * r;
+  for (int f = 0; f < surface.faceCount(); ++f) {
+    const double n = surface.domainSides(f);
+    count += 1 + n * (r - 1) + n * (r - 1) * (r - 2) / 2;
+  }
+  return count;
+}
+
+/// Refuses a resolution below 1, or one whose mesh the 32-bit vertex
+/// indices of Mesh could not number.
+void checkResolution(const Surface &surface, int resolution) {
+  if (resolution < 1) throw InputError("", "resolution", "must be at least 1");
+  const double vertices = meshVertices(surface, resolution);
+  if (vertices > static_cast<double>(std::numeric_limits<std::uint32_t>::max())) {
+    char count[32];
+    std::snprintf(count, sizeof count, "%.3g", vertices);
+    throw InputError("", "resolution",
+                     std::to_string(resolution) + " gives " + count +
+                         " vertices, more than a mesh's 32-bit indices can number (4294967295)");
+  }
+}
+
 } // namespace
 
 std::size_t faceInteriorPoints(const Surface &surface, int resolution) {
-  if (resolution < 1) throw InputError("", "resolution", "must be at least 1");
+  checkResolution(surface, resolution);
   std::size_t count = 0;
   for (int f = 0; f < surface.faceCount(); ++f) count += faceInteriorCount(surface.domainSides(f), resolution);
   return count;
@@ -216,9 +250,19 @@ std::vector<Vec3> evaluateFaceInteriors(const Surface &surface, const Tessellati
   return points;
 }
 
+std::size_t availableMemory() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key, unit;
+  std::size_t kilobytes = 0;
+  while (meminfo >> key >> kilobytes >> unit)
+    if (key == "MemAvailable:") return kilobytes * 1024;
+  const long pages = ::sysconf(_SC_PHYS_PAGES), pageSize = ::sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && pageSize > 0 ? static_cast<std::size_t>(pages) * static_cast<std::size_t>(pageSize) : 0;
+}
+
 std::size_t estimateMeshVertices(const Surface &surface, int resolution) {
-  return surface.network().vertices().size() + surface.network().segments().size() * resolution +
-         faceInteriorPoints(surface, resolution);
+  const double vertices = meshVertices(surface, std::max(resolution, 1));
+  return vertices < 0x1p63 ? static_cast<std::size_t>(vertices) : std::numeric_limits<std::size_t>::max();
 }
 
 namespace {
@@ -230,7 +274,7 @@ namespace {
 /// full run computes it, so the result equals a full tessellation.
 void tessellateInto(const Surface &surface, const TessellationOptions &options, const std::vector<char> *only,
                     Mesh &mesh) {
-  if (options.resolution < 1) throw InputError("", "resolution", "must be at least 1");
+  checkResolution(surface, options.resolution);
   const Network &net = surface.network();
   const int r = options.resolution;
   const Layout layout = makeLayout(surface, r);
