@@ -69,14 +69,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
   // Small built-ins: every kind of node, face and scheme, each built in well
   // under a second.
   const char *name = in.PickValueInArray({"pentagon", "saddle-nodes", "sphere-dodecahedron", "hemisphere-tjunction",
-                                          "tjunction-vertex", "concave-L"});
+                                          "tjunction-vertex", "concave-L", "ring"});
   SurfaceOptions options;
   options.scheme = in.PickValueInArray(
       {Scheme::GregoryG1, Scheme::CompositeRibbon, Scheme::GregoryG2, Scheme::BezierG1, Scheme::CoonsC0});
   if (options.scheme == Scheme::GregoryG2)
     options.edgeCurvature = in.PickValueInArray({EdgeCurvature::Direct, EdgeCurvature::MasterSlave});
   Result<Model> built = Model::build(builtinNetwork(name), options);
-  if (!built) return 0; // e.g. bezier-g1 over a network that is not 4-sided Bézier
+  if (!built) {
+    // Refused for a reason (e.g. bezier-g1 over a network that is not
+    // 4-sided Bézier), never by an internal error.
+    if (built.status().code == StatusCode::Internal) finding("a built-in failed to build: " + built.status().toString());
+    return 0;
+  }
   Model &model = *built;
 
   for (int edit = in.ConsumeIntegralInRange(1, 3); edit > 0 && in.remaining_bytes() > 0; --edit) {
