@@ -151,6 +151,9 @@ TEST(MeshReaders, ObjAndOffRoundTripAndRefusals) {
   EXPECT_THROW(parseObjMesh("v 0 0 0\n"), InputError);
   EXPECT_THROW(parseOffMesh("OFF\n3 1 0\n0 0 0\n1 0 0\n"), InputError);
   EXPECT_THROW(parseOffMesh("PLY\n"), InputError);
+  // A corner count at the top of the integer range (UBSan watched the check
+  // that refuses it overflow).
+  EXPECT_THROW(parseOffMesh("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n9223372036854775807 0 1 2\n"), InputError);
   EXPECT_THROW(readMeshFile("mesh.stl"), InputError);
 }
 

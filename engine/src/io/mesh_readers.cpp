@@ -144,7 +144,7 @@ Mesh parseOffMesh(const std::string &text, const std::string &file) {
     const auto t = next();
     const std::string where = "line " + std::to_string(n);
     const long long count = integer(t[0], file, where);
-    if (count < 3 || static_cast<long long>(t.size()) < count + 1)
+    if (count < 3 || count >= static_cast<long long>(t.size())) // (count + 1 could overflow)
       throw InputError(file, where, "a face needs its corner count (≥ 3) and that many indices");
     std::vector<std::uint32_t> corners;
     for (long long k = 1; k <= count; ++k) {
