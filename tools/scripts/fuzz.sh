@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Bounded fuzzing of every reader, of the network builder, of model edits and
-# of the C interface (libFuzzer, clang, ASan + UBSan), seeded from the
-# built-ins and ../shared/data.
+# Bounded fuzzing of every reader (networks and meshes), of the network
+# builder, of model edits and of the C interface (libFuzzer, clang, ASan +
+# UBSan), seeded from the built-ins and ../shared/data.
 #   bash tools/scripts/fuzz.sh [SECONDS_PER_HARNESS]   # default 60
 # Long runs: pass e.g. 3600; the corpora grow in build-fuzz/corpus/ and are
 # reused by the next run. A finding stops the script with a non-zero exit and
@@ -25,10 +25,10 @@ CURVENET_EXTRA_PACKAGES="clang-14 libclang-rt-14-dev" bash "$repo/tools/scripts/
 cmake --build "$dir" -j "$(nproc)"
 
 corpus=$dir/corpus findings=$dir/findings
-harnesses=(fuzz_network_json fuzz_lop fuzz_network_builder fuzz_model_edit fuzz_c_api)
+harnesses=(fuzz_network_json fuzz_lop fuzz_mesh fuzz_network_builder fuzz_model_edit fuzz_c_api)
 for harness in "${harnesses[@]}"; do mkdir -p "$corpus/$harness"; done
 mkdir -p "$findings"
-"$dir/tests/fuzz/fuzz_seed_corpus" "$corpus/fuzz_network_json"
+"$dir/tests/fuzz/fuzz_seed_corpus" "$corpus/fuzz_network_json" "$corpus/fuzz_mesh"
 shared=$repo/../shared/data/transfinite-models
 if [ -d "$shared" ]; then cp -f "$shared"/*.lop "$corpus/fuzz_lop/"; fi
 
@@ -43,13 +43,13 @@ for harness in "${harnesses[@]}"; do
 done
 
 # The harnesses are single-threaded: run them side by side, each for the given
-# wall time, so the run takes SECONDS rather than five times as long. The
-# slowest inputs take ~15 s on a whole core: 45 s per input leaves room for
-# sharing two cores five ways and still stops a real hang.
+# wall time, so the run takes SECONDS rather than six times as long. The
+# slowest inputs take ~15 s on a whole core: 90 s per input leaves room for
+# sharing two cores six ways and still stops a real hang.
 echo "fuzz: ${harnesses[*]} side by side for ${seconds}s each"
 pids=()
 for harness in "${harnesses[@]}"; do
-  "$dir/tests/fuzz/$harness" "$corpus/$harness" -max_total_time="$seconds" -timeout=45 -rss_limit_mb=4096 \
+  "$dir/tests/fuzz/$harness" "$corpus/$harness" -max_total_time="$seconds" -timeout=90 -rss_limit_mb=4096 \
     -max_len=65536 -artifact_prefix="$findings/$harness-" -print_final_stats=1 2>"$findings/$harness.log" &
   pids+=($!)
 done
