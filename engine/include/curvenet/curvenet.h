@@ -173,6 +173,8 @@ void curvenet_model_destroy(curvenet_model *model);
 
 /* ---- Inspection (cheap) ------------------------------------------------ */
 
+/* Faces of the network: connection curves may split a face given to
+ * curvenet_model_build into several (see Model::faceCount in curvenet.hpp). */
 int curvenet_model_face_count(const curvenet_model *model);
 int curvenet_model_curve_count(const curvenet_model *model);
 /* Sides of face `face`'s domain polygon (4 for a 2-sided face); 0 for a bad index. */
@@ -234,7 +236,9 @@ curvenet_status_code curvenet_model_evaluate_positions(const curvenet_model *mod
 
 /* Tessellates the whole network (face = CURVENET_ALL_FACES; one watertight
  * mesh) or one face, with `resolution` ≥ 1 intervals per segment, on
- * `threads` threads (0 = all cores), and keeps the mesh in the model. The
+ * `threads` threads (0 = all cores), and keeps the mesh in the model (a mesh
+ * that would not fit in the memory available: CURVENET_OUT_OF_MEMORY up
+ * front, the kept mesh unchanged). The
  * sizes go to *vertex_count and *triangle_count (either may be NULL): size
  * the buffers of curvenet_model_copy_mesh with them. Cost: one
  * whole-network tessellation per distinct option set; cached per

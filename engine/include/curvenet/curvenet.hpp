@@ -207,6 +207,9 @@ public:
 
   // ---- Inspection (const, cheap, thread-safe) ----
 
+  /// The network's faces: where connection curves split a described face
+  /// (a concave loop, a hole; network.hpp) its parts are faces of their own.
+  /// An edit that changes such a split renumbers the faces (see setCurve).
   int faceCount() const;
   int curveCount() const;
   /// Sides of face `face`'s domain polygon (its loop's side count; 4 for a
@@ -289,6 +292,8 @@ public:
   /// kept the topology, the cached result is re-tessellated on the edited
   /// faces only (lastEditedFaces, through the cached plans), so the next
   /// call at that resolution costs a copy; otherwise an edit drops it.
+  /// A resolution whose mesh would not fit in the memory available is
+  /// refused up front (OutOfMemory, with the estimate); the kept mesh stays.
   Result<MeshSize> tessellate(const TessellationOptions &options = {}, int face = allFaces);
 
   /// The kept mesh (library-owned; empty before any tessellate and after an
@@ -322,7 +327,11 @@ public:
   /// (lastEditedFaces), not to the model, and so is bringing the cached
   /// tessellation up to date (see tessellate). Clears the kept mesh; call
   /// tessellate again. Face and curve numbers stay; vertex and segment
-  /// numbers stay unless the edit makes curve ends meet differently. On
+  /// numbers stay unless the edit makes curve ends meet differently. An edit
+  /// that changes how connection curves split a face (a concave corner
+  /// turned convex) changes the faces: with one option set for every face
+  /// the model is then built afresh; with per-face options the edit is
+  /// refused (InvalidInput), as they would no longer match the faces. On
   /// failure (a loop no longer closes, …) nothing changes.
   Status setCurve(int curve, BSplineCurve replacement);
 
