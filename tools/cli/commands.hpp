@@ -47,10 +47,10 @@ void printPictureLine(const std::string &path, const RenderedPicture &picture);
 void warnAboutFolds(const Surface &surface);
 
 /// Memory a mesh of `vertices` needs while being built (and written as text).
-std::size_t estimateMeshBytes(std::size_t vertices, bool writesText);
+double estimateMeshBytes(std::size_t vertices, bool writesText);
 /// InputError naming `what` with the estimate when `bytes` exceeds 80% of
-/// the memory available now; called before any work starts.
-void refuseIfTooLarge(std::size_t bytes, const std::string &what);
+/// the memory available now (memoryShortfall); called before any work starts.
+void refuseIfTooLarge(double bytes, const std::string &what);
 
 
 } // namespace curvenet::cli

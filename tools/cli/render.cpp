@@ -25,7 +25,7 @@ RenderedPicture renderPicture(const Surface &surface, const render::RenderOption
   t.recordDomainPoints = curvatureMode;
   // Mesh + Embree's BVH (~ the mesh again) + image planes (color, phase,
   // coverage, face: 24 B per pixel) before any work starts.
-  const std::size_t pixels = std::size_t(options.width) * std::size_t(options.height);
+  const double pixels = double(options.width) * double(options.height);
   refuseIfTooLarge(2 * estimateMeshBytes(estimateMeshVertices(surface, resolution), false) + 24 * pixels,
                    "--resolution " + std::to_string(resolution) + " at " + std::to_string(options.width) + "x" +
                        std::to_string(options.height));

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <span>
+#include <string>
 
 #include "curvenet/mesh.hpp"
 #include "curvenet/progress.hpp"
@@ -58,10 +59,11 @@ void clearEvaluationPlans();
 /// checks (saturates instead of overflowing for huge resolutions).
 std::size_t estimateMeshVertices(const Surface &surface, int resolution);
 
-/// Bytes of memory the system has available for new work (Linux
-/// MemAvailable, else the physical memory; 0 when unknown): what memory
-/// checks compare estimates with.
-std::size_t availableMemory();
+/// The one check behind every refusal of work too large for the machine:
+/// when `bytes` exceed 80% of the memory available now (Linux MemAvailable,
+/// else the physical memory), "needs about X GiB of memory but only Y GiB is
+/// available"; empty when they fit or the available memory is unknown.
+std::string memoryShortfall(double bytes);
 
 /// Tessellates every face (see the file comment). Parallel over faces and,
 /// for large faces, over tiles of samples (explicit grain sizes); small

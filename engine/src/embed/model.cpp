@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <new>
 #include <unordered_map>
@@ -472,13 +471,10 @@ Result<MeshSize> Model::tessellate(const TessellationOptions &options, int face)
     // triangles (72 B) for each surface's mesh, the merged whole mesh and
     // the kept copy, plus the tessellator's staging (~32 B).
     const double vertices = static_cast<double>(estimateMeshVertices(m.groups[0].surface, options.resolution));
-    const double bytes = vertices * (72.0 * static_cast<double>(m.groups.size() + 2) + 32);
-    if (const double available = static_cast<double>(availableMemory()); available > 0 && bytes > 0.8 * available) {
-      char message[160];
-      std::snprintf(message, sizeof message, "%d needs about %.3g GiB of memory but only %.3g GiB is available",
-                    options.resolution, bytes / 0x1p30, available / 0x1p30);
-      return failure(StatusCode::OutOfMemory, "resolution", message);
-    }
+    if (const std::string shortfall =
+            memoryShortfall(vertices * (72.0 * static_cast<double>(m.groups.size() + 2) + 32));
+        !shortfall.empty())
+      return failure(StatusCode::OutOfMemory, "resolution", std::to_string(options.resolution) + " " + shortfall);
     if (!m.whole || m.wholeOptions.resolution != options.resolution ||
         m.wholeOptions.recordDomainPoints != options.recordDomainPoints) {
       m.whole.reset();

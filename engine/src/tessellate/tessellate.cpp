@@ -250,14 +250,26 @@ std::vector<Vec3> evaluateFaceInteriors(const Surface &surface, const Tessellati
   return points;
 }
 
-std::size_t availableMemory() {
+std::string memoryShortfall(double bytes) {
+  // MemAvailable from /proc/meminfo, else the physical memory, else unknown.
+  double available = 0;
   std::ifstream meminfo("/proc/meminfo");
   std::string key, unit;
-  std::size_t kilobytes = 0;
+  double kilobytes = 0;
   while (meminfo >> key >> kilobytes >> unit)
-    if (key == "MemAvailable:") return kilobytes * 1024;
-  const long pages = ::sysconf(_SC_PHYS_PAGES), pageSize = ::sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && pageSize > 0 ? static_cast<std::size_t>(pages) * static_cast<std::size_t>(pageSize) : 0;
+    if (key == "MemAvailable:") {
+      available = kilobytes * 1024;
+      break;
+    }
+  if (!(available > 0)) {
+    const long pages = ::sysconf(_SC_PHYS_PAGES), pageSize = ::sysconf(_SC_PAGE_SIZE);
+    available = pages > 0 && pageSize > 0 ? static_cast<double>(pages) * static_cast<double>(pageSize) : 0;
+  }
+  if (!(available > 0) || bytes <= 0.8 * available) return {};
+  char message[128];
+  std::snprintf(message, sizeof message, "needs about %.3g GiB of memory but only %.3g GiB is available",
+                bytes / 0x1p30, available / 0x1p30);
+  return message;
 }
 
 std::size_t estimateMeshVertices(const Surface &surface, int resolution) {
