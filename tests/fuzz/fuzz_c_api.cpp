@@ -64,10 +64,10 @@ double number(FuzzedDataProvider &in) {
 /// A curve's arrays, owned here; view() is what the C interface reads.
 struct CurveData {
   int degree = 3;
-  std::vector<double> knots, points, weights;
-  bool weighted = false;
+  std::vector<double> knots, points, weights; ///< no weights: a polynomial curve
   curvenet_curve view() const {
-    return {degree, knots.data(), knots.size(), points.data(), points.size() / 3, weighted ? weights.data() : nullptr};
+    return {degree, knots.data(), knots.size(), points.data(), points.size() / 3,
+            weights.empty() ? nullptr : weights.data()};
   }
 };
 
@@ -91,7 +91,6 @@ CurveData curveFrom(FuzzedDataProvider &in, const double a[3], const double b[3]
   case 2: c.knots[in.ConsumeIntegralInRange(0, 2 * count - 1)] = number(in); break; // a bad knot
   case 3: c.points[in.ConsumeIntegralInRange(0, 3 * count - 1)] = number(in); break; // a bad point
   case 4:
-    c.weighted = true;
     for (int k = 0; k < count; ++k) c.weights.push_back(in.ConsumeBool() ? 1.0 : number(in));
     break;
   case 5: c.points.clear(), c.knots.clear(); break; // no data at all
@@ -322,22 +321,25 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
 
   for (int call = in.ConsumeIntegralInRange(1, 8); call > 0 && in.remaining_bytes() > 0; --call) {
     const int faces = curvenet_model_face_count(model), curveCount = curvenet_model_curve_count(model);
-    const std::vector<unsigned char> before = snapshot(model);
-    curvenet_status_code code = CURVENET_OK;
-    switch (in.ConsumeIntegralInRange(0, 5)) {
-    case 0:
-    case 1:
+    const int kind = in.ConsumeIntegralInRange(0, 5);
+    if (kind <= 1) {
       evaluate(in, model, in.ConsumeIntegralInRange(-1, faces));
       continue;
+    }
+    if (kind == 3) {
+      tessellateAndCopy(in, model);
+      continue;
+    }
+    // The calls that change the model: a failure must leave it as it was.
+    const std::vector<unsigned char> before = snapshot(model);
+    curvenet_status_code code = CURVENET_OK;
+    switch (kind) {
     case 2: {
       const curvenet_surface_options o = options(in);
       const int face = in.ConsumeBool() ? CURVENET_ALL_FACES : in.ConsumeIntegralInRange(-2, faces);
       code = checked("set_face_options", curvenet_model_set_face_options(model, face, &o, &status), &status);
       break;
     }
-    case 3:
-      tessellateAndCopy(in, model);
-      continue;
     case 4: {
       // A replacement: one of the model's own curves moved, or an arbitrary one.
       const int curve = in.ConsumeIntegralInRange(-1, curveCount);
