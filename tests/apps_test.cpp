@@ -26,6 +26,7 @@
 #include "curvenet/builtins.hpp"
 #include "curvenet/continuity.hpp"
 #include "curvenet/curvature_jump.hpp"
+#include "curvenet/curvenet.hpp"
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
 #include "curvenet/mesh_reference.hpp"
@@ -284,11 +285,17 @@ TEST(MeshApproximation, CommandLine) {
 // the direct source elsewhere, gregory-g2 must (1) stay curvature continuous
 // everywhere, and (2) on each named edge carry exactly the cross curvature of
 // the master's G¹ patch, measured independently here at the sample points.
-TEST(MasterSlave, NamedMasterFacesGiveTheirCurvature) {
+NetworkDescription torusWithNamedMasters() {
   NetworkDescription d = builtinNetwork("torus-mixed");
   const Network plain = Network::build(d);
   for (const Segment &seg : plain.segments())
     if (seg.sourceCurve % 3 == 0 && seg.faces[1] >= 0) d.edges.push_back({seg.sourceCurve, seg.faces[1]});
+  return d;
+}
+
+TEST(MasterSlave, NamedMasterFacesGiveTheirCurvature) {
+  const NetworkDescription d = torusWithNamedMasters();
+  const Network plain = Network::build(builtinNetwork("torus-mixed"));
   // The format keeps them.
   const NetworkDescription back = parseNetworkJson(networkToJson(d));
   ASSERT_EQ(back.edges.size(), d.edges.size());
@@ -337,6 +344,59 @@ TEST(MasterSlave, NamedMasterFacesGiveTheirCurvature) {
   EXPECT_THROW(Network::build(bad), InputError);
   bad.edges = {{0, -1}, {0, -1}};
   EXPECT_THROW(Network::build(bad), InputError);
+}
+
+// MasterFaces::KeptG1 on the same network: the named masters stay their G¹
+// patches (bit for bit), the fences are shared everywhere (the surface stays
+// G¹), and every edge between a kept face and a G² face — named or not —
+// takes the kept patch's cross curvature. Unlike the setback fillets, these
+// G¹ patches do not have the vertex tensors' curvature at their corners,
+// where the G² faces keep the tensors: the jump to a kept face is small in
+// the middle of its edges and grows towards their ends.
+TEST(MasterSlave, KeptG1MasterFacesGiveTheirCurvatureAwayFromVertices) {
+  const Network net = Network::build(torusWithNamedMasters());
+  const Surface g1 = Surface::build(net, {});
+  SurfaceOptions options;
+  options.scheme = Scheme::GregoryG2;
+  options.masterFaces = MasterFaces::KeptG1;
+  const Surface kept = Surface::build(net, options);
+  std::vector<char> isKept(net.faces().size());
+  int keptFaces = 0;
+  for (size_t f = 0; f < net.faces().size(); ++f) {
+    const int face = static_cast<int>(f);
+    isKept[f] = kept.faceOptions(face).scheme == Scheme::GregoryG1;
+    keptFaces += isKept[f];
+    if (isKept[f]) {
+      const SurfacePoint a = kept.evaluate(face, {0.2, -0.1}), b = g1.evaluate(face, {0.2, -0.1});
+      EXPECT_TRUE(a.point == b.point && a.normal == b.normal) << f;
+    }
+  }
+  const ContinuityReport continuity = measureContinuity(kept, {32});
+  const CurvatureJumpReport jump = measureCurvatureJump(kept), jumpG1 = measureCurvatureJump(g1);
+  ASSERT_EQ(jump.samples.size(), jumpG1.samples.size());
+  double worstG2 = 0, middleKept = 0, middleG1 = 0;
+  int unnamedMixed = 0;
+  std::vector<char> counted(net.segments().size(), 0);
+  for (size_t k = 0; k < jump.samples.size(); ++k) {
+    const CurvatureJumpSample &sample = jump.samples[k];
+    const Segment &seg = net.segments()[size_t(sample.segment)];
+    const int keptSides = isKept[size_t(seg.faces[0])] + isKept[size_t(seg.faces[1])];
+    if (keptSides == 0) worstG2 = std::max(worstG2, sample.jump);
+    if (keptSides != 1) continue;
+    if (!counted[size_t(sample.segment)]) unnamedMixed += seg.masterFace < 0, counted[size_t(sample.segment)] = 1;
+    if (sample.u > 1.0 / 3 && sample.u < 2.0 / 3)
+      middleKept = std::max(middleKept, sample.jump), middleG1 = std::max(middleG1, jumpG1.samples[k].jump);
+  }
+  std::printf("kept G1 masters on torus-mixed: %d kept faces; curvature jump G2|G2 %.2e, G1|G2 middle thirds %.2e "
+              "(gregory-g1 there %.2e; %d unnamed edges); normal angle %.2e deg\n",
+              keptFaces, worstG2, middleKept, middleG1, unnamedMixed, continuity.maxNormalAngleDeg);
+  EXPECT_GT(keptFaces, 5);
+  EXPECT_GT(unnamedMixed, 0);
+  EXPECT_LE(worstG2, 1e-4);
+  EXPECT_LE(middleKept, 1e-3);
+  EXPECT_GE(middleG1, 100 * middleKept);
+  EXPECT_LE(continuity.maxPositionGap, 1e-12);
+  EXPECT_LE(continuity.maxNormalAngleDeg, 1e-6);
 }
 
 // Connection curves (paper 000 Sec. 5.2). concave-L is one 6-sided loop with
@@ -455,6 +515,42 @@ TEST(ConnectionCurves, ConvexNetworksAreLeftAlone) {
   }
 }
 
+namespace {
+
+/// The setback fillets' (faces 0–2) tessellated points against their
+/// cylinders: distance from the fillet axis minus the radius, relative to
+/// the radius, per fillet. The end arc naming the fillet as master gives
+/// axis and radius.
+std::array<double, 3> filletDeviations(const Network &net, const Surface &surface) {
+  const Mesh mesh = tessellate(surface, {24, 0});
+  std::array<double, 3> worst{};
+  for (int f = 0; f < 3; ++f) {
+    const Segment *arc = nullptr;
+    for (const Segment &seg : net.segments())
+      if (seg.masterFace == f) arc = &seg;
+    if (!arc) ADD_FAILURE() << "fillet " << f << " is nobody's master";
+    if (!arc) continue;
+    const Vec3 p0 = arc->curve.point(0), p1 = arc->curve.point(1), mid = arc->curve.point(0.5);
+    // The axis runs along the coordinate in which the arc does not vary;
+    // the arc's centre lies beyond its chord midpoint, away from its middle.
+    const Vec3 spread = p1 - p0, chord = (p0 + p1) * 0.5;
+    const int a = std::abs(spread.x) < 1e-12 ? 0 : std::abs(spread.y) < 1e-12 ? 1 : 2;
+    const double radius = norm(spread) / std::numbers::sqrt2;
+    Vec3 centre = chord - (mid - chord) * (1.0 / (std::numbers::sqrt2 - 1.0));
+    (a == 0 ? centre.x : a == 1 ? centre.y : centre.z) = 0;
+    for (std::uint32_t t = mesh.faceTriangleStart[size_t(f)]; t < mesh.faceTriangleStart[size_t(f) + 1]; ++t)
+      for (std::uint32_t i : mesh.triangles[t]) {
+        Vec3 q = mesh.positions[i];
+        (a == 0 ? q.x : a == 1 ? q.y : q.z) = 0;
+        worst[size_t(f)] = std::max(worst[size_t(f)], std::abs(norm(q - centre) - radius) / radius);
+      }
+  }
+  return worst;
+}
+
+} // namespace
+
+
 // Master–slave vertex blend (paper 000 Sec. 5.1, Fig. 8): three cylindrical
 // fillets of a box corner are the masters, the 6-sided setback blend the
 // slave. gregory-g2 must join the slave to every master with a curvature jump
@@ -532,28 +628,9 @@ TEST(SetbackVertexBlend, SlaveIsCurvatureContinuousToEveryMaster) {
     EXPECT_LE(mastersBack[k].maxJump, 1e-4);
   }
 
-  // The masters' own patches against their cylinders: distance of the
-  // tessellated fillet points from the fillet axis, minus the radius.
+  // The masters' own patches against their cylinders.
   for (const Surface *surface : {&g1, &g2}) {
-    const Mesh mesh = tessellate(*surface, {24, 0});
-    std::array<double, 3> worst{};
-    for (int f = 0; f < 3; ++f) {
-      const Segment &arc = net.segments()[size_t(masters[size_t(f)].segment)];
-      const Vec3 p0 = arc.curve.point(0), p1 = arc.curve.point(1), mid = arc.curve.point(0.5);
-      // The axis runs along the coordinate in which the arc does not vary;
-      // the arc's centre lies beyond its chord midpoint, away from its middle.
-      const Vec3 spread = p1 - p0, chord = (p0 + p1) * 0.5;
-      const int a = std::abs(spread.x) < 1e-12 ? 0 : std::abs(spread.y) < 1e-12 ? 1 : 2;
-      const double radius = norm(spread) / std::numbers::sqrt2;
-      Vec3 centre = chord - (mid - chord) * (1.0 / (std::numbers::sqrt2 - 1.0));
-      (a == 0 ? centre.x : a == 1 ? centre.y : centre.z) = 0;
-      for (std::uint32_t t = mesh.faceTriangleStart[size_t(f)]; t < mesh.faceTriangleStart[size_t(f) + 1]; ++t)
-        for (std::uint32_t i : mesh.triangles[t]) {
-          Vec3 q = mesh.positions[i];
-          (a == 0 ? q.x : a == 1 ? q.y : q.z) = 0;
-          worst[size_t(f)] = std::max(worst[size_t(f)], std::abs(norm(q - centre) - radius) / radius);
-        }
-    }
+    const std::array<double, 3> worst = filletDeviations(net, *surface);
     std::printf("%s fillet patches vs cylinders (relative to r): %.2e %.2e %.2e\n",
                 schemeName(surface->options().scheme).c_str(), worst[0], worst[1], worst[2]);
     // gregory-g1 reproduces the cylinders (ruled end-arc ribbons); gregory-g2
@@ -562,6 +639,46 @@ TEST(SetbackVertexBlend, SlaveIsCurvatureContinuousToEveryMaster) {
     const double bound = surface == &g1 ? 1e-12 : 0.02;
     for (double w : worst) EXPECT_LE(w, bound);
   }
+}
+
+// MasterFaces::KeptG1: gregory-g2 keeps the fillets as the G¹ patches the
+// blend's curvature is measured on. The fillets stay cylinders (they are the
+// gregory-g1 patches, bit for bit), the blend meets them G¹ (shared fences)
+// and curvature continuously.
+TEST(SetbackVertexBlend, KeptG1MastersStayCylindersAndMeetTheBlendG2) {
+  const Network net = Network::build(builtinNetwork("setback-vertex-blend"));
+  const Surface g1 = Surface::build(net, {});
+  SurfaceOptions options;
+  options.scheme = Scheme::GregoryG2;
+  options.masterFaces = MasterFaces::KeptG1;
+  const Surface kept = Surface::build(net, options);
+  EXPECT_TRUE(kept.foldedFaces().empty());
+  for (int f = 0; f < 4; ++f) {
+    const SurfaceOptions o = kept.faceOptions(f);
+    EXPECT_EQ(o.scheme, f < 3 ? Scheme::GregoryG1 : Scheme::GregoryG2) << f;
+  }
+  EXPECT_THROW(kept.faceOptions(4), InputError);
+  for (int f = 0; f < 3; ++f)
+    for (const Vec2 uv : {Vec2{0.1, 0.2}, Vec2{-0.3, 0.05}, Vec2{0.0, -0.6}}) {
+      const SurfacePoint a = kept.evaluate(f, uv), b = g1.evaluate(f, uv);
+      EXPECT_TRUE(a.point == b.point && a.du == b.du && a.dv == b.dv) << f;
+    }
+  const std::array<double, 3> worst = filletDeviations(net, kept);
+  const ContinuityReport continuity = measureContinuity(kept, {64});
+  const CurvatureJumpReport jump = measureCurvatureJump(kept);
+  std::printf("kept G1 fillets vs cylinders (x r): %.2e %.2e %.2e; normal angle %.2e deg, curvature jump %.2e\n",
+              worst[0], worst[1], worst[2], continuity.maxNormalAngleDeg, jump.maxJump);
+  for (double w : worst) EXPECT_LE(w, 1e-12);
+  EXPECT_LE(continuity.maxPositionGap, 1e-12);
+  EXPECT_LE(continuity.maxNormalAngleDeg, 1e-6);
+  EXPECT_LE(jump.maxJump, 1e-4);
+  // The pure G¹ surface jumps by ~1 across the same edges.
+  EXPECT_GE(measureCurvatureJump(g1).maxJump, 0.5);
+  // A kept face is differenced, not hyper-dual (Model follows the surface).
+  const Result<Model> model = Model::build(builtinNetwork("setback-vertex-blend"), options);
+  ASSERT_TRUE(model) << model.status().toString();
+  EXPECT_FALSE(model->hasExactSecondDerivatives(0));
+  EXPECT_TRUE(model->hasExactSecondDerivatives(3));
 }
 
 // The command line: `curvenet list` names the built-in, and `check` reports
@@ -596,4 +713,26 @@ TEST(SetbackVertexBlend, CheckReportsTheJumpToEachMaster) {
   for (size_t at = text.out.find("master face"); at != std::string::npos; at = text.out.find("master face", at + 1))
     ++lines;
   EXPECT_EQ(lines, 3u) << text.out;
+}
+
+// `--masters kept-g1`: check names the kept faces and measures the blend's
+// jump to each fillet; the option is refused with other schemes and for
+// unknown values, before any work.
+TEST(SetbackVertexBlend, CheckWithMastersKeptAsG1Patches) {
+  const CliRun run = runCli("check builtin:setback-vertex-blend --json --scheme gregory-g2 --masters kept-g1");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const nlohmann::json report = nlohmann::json::parse(run.out);
+  EXPECT_EQ(report["master_faces"], "kept-g1");
+  EXPECT_EQ(report["kept_g1_faces"], nlohmann::json::array({0, 1, 2}));
+  ASSERT_EQ(report["masters"].size(), 3u);
+  for (const auto &m : report["masters"]) EXPECT_LE(m["max_curvature_jump"].get<double>(), 1e-6);
+  EXPECT_LE(report["continuity"]["max_normal_angle_deg"].get<double>(), 1e-6);
+  const CliRun rebuilt = runCli("check builtin:setback-vertex-blend --json --scheme gregory-g2");
+  ASSERT_EQ(rebuilt.exitCode, 0) << rebuilt.err;
+  EXPECT_EQ(nlohmann::json::parse(rebuilt.out)["kept_g1_faces"], nlohmann::json::array());
+  for (const char *bad : {"--scheme gregory-g1 --masters kept-g1", "--scheme gregory-g2 --masters g1"}) {
+    const CliRun refused = runCli(std::string("check builtin:setback-vertex-blend ") + bad);
+    EXPECT_NE(refused.exitCode, 0) << bad;
+    EXPECT_NE(refused.err.find("--masters"), std::string::npos) << refused.err;
+  }
 }

@@ -211,10 +211,40 @@ static void twoFaces(void) {
   curvenet_model_destroy(model);
 }
 
+/* gregory-g2 keeping the setback fillets (the masters) as their G¹ patches:
+ * a fillet evaluates exactly as under gregory-g1, the blend does not. */
+static void keptMasters(void) {
+  curvenet_surface_options g1, kept;
+  curvenet_surface_options_init(&g1);
+  curvenet_surface_options_init(&kept);
+  EXPECT(kept.master_faces == CURVENET_MASTER_FACES_REBUILT);
+  kept.scheme = CURVENET_GREGORY_G2;
+  kept.master_faces = (curvenet_master_faces)5;
+  curvenet_model *a = NULL, *b = NULL;
+  curvenet_status status;
+  EXPECT(curvenet_model_load("builtin:setback-vertex-blend", &kept, &b, &status) == CURVENET_INVALID_ARGUMENT);
+  kept.master_faces = CURVENET_MASTER_FACES_KEPT_G1;
+  EXPECT(curvenet_model_load("builtin:setback-vertex-blend", &g1, &a, &status) == CURVENET_OK);
+  EXPECT(curvenet_model_load("builtin:setback-vertex-blend", &kept, &b, &status) == CURVENET_OK);
+  if (a && b) {
+    const double uv[2] = {0.1, 0.2};
+    curvenet_point p, q;
+    for (int face = 0; face < 4; ++face) {
+      EXPECT(curvenet_model_evaluate(a, face, uv, 1, &p, NULL, &status) == CURVENET_OK);
+      EXPECT(curvenet_model_evaluate(b, face, uv, 1, &q, NULL, &status) == CURVENET_OK);
+      const int same = memcmp(p.point, q.point, sizeof p.point) == 0;
+      EXPECT(same == (face < 3));
+    }
+  }
+  curvenet_model_destroy(a);
+  curvenet_model_destroy(b);
+}
+
 int main(void) {
   loopAndEvaluate();
   errors();
   twoFaces();
+  keptMasters();
   if (failures) fprintf(stderr, "%d check(s) failed\n", failures);
   else printf("all C interface checks passed\n");
   return failures ? 1 : 0;

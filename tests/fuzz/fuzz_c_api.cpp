@@ -123,12 +123,14 @@ curvenet_surface_options options(FuzzedDataProvider &in) {
   curvenet_surface_options_init(&o);
   if (in.ConsumeBool()) return o;
   // Any int, as a C caller may store one: copied in as raw bits.
-  const int raw[4] = {in.ConsumeIntegralInRange(-1, 5), in.ConsumeIntegralInRange(-1, 4),
-                      in.ConsumeIntegralInRange(-1, 3), in.ConsumeIntegralInRange(-1, 4)};
+  const int raw[5] = {in.ConsumeIntegralInRange(-1, 5), in.ConsumeIntegralInRange(-1, 4),
+                      in.ConsumeIntegralInRange(-1, 3), in.ConsumeIntegralInRange(-1, 4),
+                      in.ConsumeIntegralInRange(-1, 2)};
   std::memcpy(&o.scheme, &raw[0], sizeof(int));
   std::memcpy(&o.sweepline, &raw[1], sizeof(int));
   std::memcpy(&o.fence_normals, &raw[2], sizeof(int));
   std::memcpy(&o.edge_curvature, &raw[3], sizeof(int));
+  std::memcpy(&o.master_faces, &raw[4], sizeof(int));
   return o;
 }
 

@@ -69,12 +69,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
   // Small built-ins: every kind of node, face and scheme, each built in well
   // under a second.
   const char *name = in.PickValueInArray({"pentagon", "saddle-nodes", "sphere-dodecahedron", "hemisphere-tjunction",
-                                          "tjunction-vertex", "concave-L", "ring"});
+                                          "tjunction-vertex", "concave-L", "ring", "setback-vertex-blend"});
   SurfaceOptions options;
   options.scheme = in.PickValueInArray(
       {Scheme::GregoryG1, Scheme::CompositeRibbon, Scheme::GregoryG2, Scheme::BezierG1, Scheme::CoonsC0});
-  if (options.scheme == Scheme::GregoryG2)
+  if (options.scheme == Scheme::GregoryG2) {
     options.edgeCurvature = in.PickValueInArray({EdgeCurvature::Direct, EdgeCurvature::MasterSlave});
+    options.masterFaces = in.PickValueInArray({MasterFaces::Rebuilt, MasterFaces::KeptG1});
+  }
   Result<Model> built = Model::build(builtinNetwork(name), options);
   if (!built) {
     // Refused for a reason (e.g. bezier-g1 over a network that is not

@@ -1,4 +1,4 @@
-// curvenet check INPUT [--scheme S] [--json] [--threads T] [--tweak -o FILE] — network
+// curvenet check INPUT [--scheme S] [--masters M] [--json] [--threads T] [--tweak -o FILE] — network
 // analysis (vertex enclosure, Euler constraint, curvature fit per vertex),
 // optionally the tweaked network, and the continuity and reference figures
 // of the surface built with scheme S.
@@ -32,7 +32,7 @@ void runTweak(const Network &network, const std::string &output, nlohmann::json 
 Command addCheckCommand(CLI::App &app) {
   struct Options {
     std::string input;
-    std::string scheme = "gregory-g1";
+    std::string scheme = "gregory-g1", masters = "rebuilt";
     int samples = 64, resolution = 32, threads = 0;
     bool json = false;
     bool tweak = false, quiet = false;
@@ -44,6 +44,7 @@ Command addCheckCommand(CLI::App &app) {
   sub->add_flag("--json", options->json, "print one JSON object instead of tables");
   sub->add_option("--scheme", options->scheme, "surface scheme whose continuity is measured")
       ->capture_default_str();
+  addMastersOption(sub, options->masters);
   sub->add_option("--samples", options->samples, "points per segment for the continuity figures")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
@@ -64,12 +65,13 @@ Command addCheckCommand(CLI::App &app) {
             // figures do not depend on it.
             std::optional<tbb::global_control> limit;
             if (options->threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, options->threads);
-            const Scheme scheme = parseScheme(options->scheme);
+            const SurfaceOptions surfaceOptions = parseSurfaceOptions(options->scheme, options->masters);
+            const Scheme scheme = surfaceOptions.scheme;
             const Network network = Network::build(loadNetworkInput(options->input), options->input);
             nlohmann::json report = networkReport(network, options->input);
             addVertexAnalysis(report, analyzeNetwork(network));
             if (options->tweak) runTweak(network, options->output, report);
-            const Surface surface = Surface::build(network, {scheme});
+            const Surface surface = Surface::build(network, surfaceOptions);
             warnAboutFolds(surface);
             addSurfaceReport(report, surface, options->samples, options->resolution);
             if (scheme == Scheme::BezierG1) {

@@ -29,6 +29,11 @@ Command addApproximateCommand(CLI::App &app);
 
 /// The scheme for a --scheme value; InputError listing the known ones otherwise.
 Scheme parseScheme(const std::string &name);
+/// `--masters rebuilt|kept-g1` (what gregory-g2 builds over master faces) on `sub`.
+void addMastersOption(CLI::App *sub, std::string &masters);
+/// The surface options for --scheme and --masters values; InputError for an
+/// unknown name, or kept-g1 with a scheme other than gregory-g2.
+SurfaceOptions parseSurfaceOptions(const std::string &scheme, const std::string &masters);
 
 /// A picture with the mesh it shows and the render time (seconds).
 struct RenderedPicture {

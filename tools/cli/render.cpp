@@ -1,4 +1,4 @@
-// curvenet render INPUT -o FILE.{png,exr} [--scheme S] [--mode M] [--size WxH]
+// curvenet render INPUT -o FILE.{png,exr} [--scheme S] [--masters M] [--mode M] [--size WxH]
 // [--view AZ,EL] [--stripes K] [--boundaries] [--resolution R] [--threads T]
 #include <chrono>
 #include <cstdio>
@@ -59,7 +59,7 @@ void printPictureLine(const std::string &path, const RenderedPicture &p) {
 
 Command addRenderCommand(CLI::App &app) {
   struct Options {
-    std::string input, output, scheme = "gregory-g1", mode = "reflection", size = "800x600", view = "30,30";
+    std::string input, output, scheme = "gregory-g1", masters = "rebuilt", mode = "reflection", size = "800x600", view = "30,30";
     double stripes = 8;
     bool boundaries = false, quiet = false;
     int resolution = 32, threads = 0;
@@ -70,6 +70,7 @@ Command addRenderCommand(CLI::App &app) {
   sub->add_option("-o,--output", o->output, "output image (.png 8-bit sRGB, .exr float with a phase channel)")
       ->required();
   sub->add_option("--scheme", o->scheme, "gregory-g1 | composite-ribbon");
+  addMastersOption(sub, o->masters);
   sub->add_option("--mode", o->mode, "reflection | isophote | mean | gauss");
   sub->add_option("--size", o->size, "image size WxH (default 800x600)");
   sub->add_option("--view", o->view, "camera azimuth,elevation in degrees (default 30,30)");
@@ -84,7 +85,7 @@ Command addRenderCommand(CLI::App &app) {
             const std::string ext = std::filesystem::path(o->output).extension().string();
             if (ext != ".png" && ext != ".exr" && ext != ".PNG" && ext != ".EXR")
               throw InputError(o->output, {}, "unknown image extension \"" + ext + "\" (expected .png or .exr)");
-            const Scheme scheme = parseScheme(o->scheme);
+            const SurfaceOptions surfaceOptions = parseSurfaceOptions(o->scheme, o->masters);
             render::RenderOptions r;
             if (auto m = render::modeFromName(o->mode)) r.mode = *m;
             else throw InputError("", "--mode", "unknown mode '" + o->mode + "'; available: reflection, isophote, mean, gauss");
@@ -107,7 +108,7 @@ Command addRenderCommand(CLI::App &app) {
             r.threads = o->threads;
 
             const Network network = Network::build(loadNetworkInput(o->input), o->input);
-            const Surface surface = Surface::build(network, {scheme});
+            const Surface surface = Surface::build(network, surfaceOptions);
             warnAboutFolds(surface);
             const RenderedPicture picture = renderPicture(surface, r, o->resolution, progressWanted(o->quiet));
             render::writeImage(picture.image, o->output);

@@ -80,6 +80,13 @@ void addCompositeFaces(nlohmann::json &report, const Surface &surface, const Cur
 
 void addSurfaceReport(nlohmann::json &report, const Surface &surface, int samplesPerSegment, int resolution) {
   report["scheme"] = schemeName(surface.options().scheme);
+  if (surface.options().scheme == Scheme::GregoryG2) {
+    report["master_faces"] = masterFacesName(surface.options().masterFaces);
+    std::vector<int> kept;
+    for (int f = 0; f < surface.faceCount(); ++f)
+      if (surface.faceOptions(f).scheme != surface.options().scheme) kept.push_back(f);
+    report["kept_g1_faces"] = kept;
+  }
   report["folded_faces"] = surface.foldedFaces();
   const ContinuityReport c = measureContinuity(surface, {samplesPerSegment});
   report["continuity"] = {{"max_position_gap", c.maxPositionGap},
@@ -96,9 +103,11 @@ void addSurfaceReport(nlohmann::json &report, const Surface &surface, int sample
   report["continuity"]["max_curvature_jump"] = jump.maxJump;
   report["continuity"]["mean_curvature_jump"] = jump.meanJump;
   report["continuity"]["curvature_jump_method"] =
-      std::string(surface.options().scheme == Scheme::GregoryG2
+      std::string(surface.options().scheme != Scheme::GregoryG2 ? "fourth-order differences of the exact first derivatives, step 1e-5"
+                  : report["kept_g1_faces"].empty()
                       ? "exact second derivatives (hyper-dual numbers)"
-                      : "fourth-order differences of the exact first derivatives, step 1e-5") +
+                      : "exact second derivatives (hyper-dual numbers); on the kept G1 faces fourth-order differences "
+                        "of the exact first derivatives, step 1e-5") +
       "; 17 points per shared segment, 1% left out at each end; |k_A - k_B| / max(|k_A|, |k_B|, 1/diagonal)";
   addCompositeFaces(report, surface, jump);
   // Master edges (paper 000 Sec. 5.1): the jump from each slave to its master.
@@ -258,7 +267,12 @@ void printReportTable(const nlohmann::json &report) {
   }
   if (report.contains("continuity")) {
     const auto &c = report["continuity"];
-    std::printf("\ncontinuity (%s):\n", report.value("scheme", std::string("?")).c_str());
+    std::string kept;
+    if (report.contains("kept_g1_faces") && !report["kept_g1_faces"].empty()) {
+      kept = "; master faces kept as gregory-g1 patches:";
+      for (const auto &f : report["kept_g1_faces"]) kept += " " + std::to_string(f.get<int>());
+    }
+    std::printf("\ncontinuity (%s%s):\n", report.value("scheme", std::string("?")).c_str(), kept.c_str());
     for (auto &[key, value] : c.items())
       if (value.is_number()) std::printf("  %-28s %.6g\n", key.c_str(), value.get<double>());
   }

@@ -97,15 +97,21 @@ typedef enum curvenet_edge_curvature {
   CURVENET_EDGE_CURVATURE_REFERENCE = 3
 } curvenet_edge_curvature;
 
+typedef enum curvenet_master_faces {
+  CURVENET_MASTER_FACES_REBUILT = 0,
+  CURVENET_MASTER_FACES_KEPT_G1 = 1
+} curvenet_master_faces;
+
 typedef struct curvenet_surface_options {
   curvenet_scheme scheme;
   curvenet_sweepline sweepline;
   curvenet_fence_normals fence_normals;
   curvenet_edge_curvature edge_curvature; /* gregory-g2 only */
+  curvenet_master_faces master_faces;     /* gregory-g2 only */
 } curvenet_surface_options;
 
 /* Fills the defaults: gregory-g1, automatic sweepline and fences, direct
- * edge curvature. */
+ * edge curvature, master faces rebuilt. */
 void curvenet_surface_options_init(curvenet_surface_options *options);
 
 /* How a batch evaluation spreads its work (see BatchOptions in curvenet.hpp). */
@@ -217,8 +223,9 @@ curvenet_status_code curvenet_model_evaluate(const curvenet_model *model, int fa
                                              curvenet_point *out, const curvenet_batch_options *batch,
                                              curvenet_status *status);
 
-/* As curvenet_model_evaluate with second derivatives: exact for gregory-g2,
- * 9 first-order evaluations with step batch->step for the other schemes. */
+/* As curvenet_model_evaluate with second derivatives: exact for gregory-g2
+ * (except on master faces kept as G¹ patches), 9 first-order evaluations with
+ * step batch->step for the other schemes. */
 curvenet_status_code curvenet_model_evaluate_second_order(const curvenet_model *model, int face, const double *uv,
                                                           size_t count, curvenet_point2 *out,
                                                           const curvenet_batch_options *batch,

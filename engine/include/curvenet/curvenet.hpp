@@ -218,8 +218,9 @@ public:
   /// Corner `corner` (taken modulo domainSides) of face `face`'s domain:
   /// (cos 2πk/n, sin 2πk/n) rotated as surface.hpp says.
   Result<Vec2> domainCorner(int face, int corner) const;
-  /// True when evaluateSecondOrder is exact for the face (gregory-g2), false
-  /// when it differences exact first derivatives.
+  /// True when evaluateSecondOrder is exact for the face (gregory-g2, but not
+  /// a master face it keeps as a G¹ patch), false when it differences exact
+  /// first derivatives.
   bool hasExactSecondDerivatives(int face) const;
 
   /// The options face `face` uses; the first face's for an index out of range.

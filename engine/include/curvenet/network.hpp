@@ -55,7 +55,9 @@ struct EdgeDescription {
   /// Master face (paper 000 Sec. 5.1): every piece of the curve borders this
   /// face, and gregory-g2 gives the other face of each piece the master's
   /// cross curvature (measured on the master's G¹ patch), whatever the
-  /// surface's EdgeCurvature source is elsewhere. -1: no master.
+  /// surface's EdgeCurvature source is elsewhere; the master face itself is
+  /// rebuilt as a G² patch or kept as that G¹ patch (MasterFaces). -1: no
+  /// master.
   int masterFace = -1;
   /// A connection curve (paper 000 Sec. 5.2): an inner seam of a composite
   /// face, hidden from the user. gregory-g2 averages the two G¹ patches'

@@ -128,6 +128,30 @@ enum class EdgeCurvature {
   Reference,
 };
 
+/// What gregory-g2 builds over a master face: a face that an edge names as
+/// its master (EdgeDescription::masterFace, paper 000 Sec. 5.1).
+enum class MasterFaces {
+  /// Rebuilt from parabolic ribbons like every other face: the whole surface
+  /// is G² patches (a G² patch cannot reproduce a circular cross-section, so
+  /// a cylindrical fillet master leaves its cylinder by ~1.5% of the radius).
+  Rebuilt,
+  /// Kept as the G¹ patch the slaves' curvature is measured on (gregory-g1,
+  /// radial sweep, the G¹ fences): exactly the face a gregory-g1 build gives
+  /// (faceOptions tells which faces these are), so a cylindrical fillet
+  /// stays its cylinder. Every edge of a kept face keeps the G¹ fence (the
+  /// surface stays G¹ everywhere), and the G² face across it takes the kept
+  /// patch's cross curvature, as across a named master edge, whether or not
+  /// the edge names it. At the edge's ends the G² face keeps the vertex
+  /// tensors, so the two meet curvature continuously along the whole edge
+  /// when the kept patch has those tensors' curvature at its corners (the
+  /// fillets of a setback vertex blend: jumps ~1e-10), and otherwise only
+  /// away from the vertices, the jump growing towards them (a G¹ patch's
+  /// corner curvature is generally not the tensor fitted to all the curves
+  /// there). Two kept faces meet G¹. Surface::rebuildAfterEdit makes a full
+  /// build.
+  KeptG1,
+};
+
 /// "gregory-g1", "composite-ribbon", "gregory-g2", "bezier-g1", "coons-c0"; and back
 /// (std::nullopt for unknown names).
 std::string schemeName(Scheme scheme);
@@ -141,12 +165,16 @@ bool acceptsAnyLoop(Scheme scheme);
 /// "master-slave", "averaging", "direct", "reference"; and back.
 std::string edgeCurvatureName(EdgeCurvature source);
 std::optional<EdgeCurvature> edgeCurvatureFromName(const std::string &name);
+/// "rebuilt", "kept-g1"; and back.
+std::string masterFacesName(MasterFaces masters);
+std::optional<MasterFaces> masterFacesFromName(const std::string &name);
 
 struct SurfaceOptions {
   Scheme scheme = Scheme::GregoryG1;
   Sweepline sweepline = Sweepline::Auto;              ///< Gregory schemes; gregory-g2 refuses Radial
   FenceNormals fenceNormals = FenceNormals::Auto;     ///< every scheme
   EdgeCurvature edgeCurvature = EdgeCurvature::Direct; ///< gregory-g2 only
+  MasterFaces masterFaces = MasterFaces::Rebuilt;      ///< gregory-g2 only
 };
 
 /// A surface point with its exact first derivatives in domain coordinates
@@ -204,8 +232,9 @@ public:
   /// for bit like Surface::build(edited, options()). A full build is made
   /// instead (partial = false, every face listed) for the Bézier schemes,
   /// for a network built away from the origin (origin() ≠ 0) or that would
-  /// be, and when the topology differs (curve ends meeting differently,
-  /// another face or vertex count). Cost: proportional to the faces rebuilt,
+  /// be, for gregory-g2 keeping master faces as G¹ patches
+  /// (MasterFaces::KeptG1, when some face is), and when the topology differs
+  /// (curve ends meeting differently, another face or vertex count). Cost: proportional to the faces rebuilt,
   /// one face ring around the edited curves (two rings for G¹-measured edge
   /// curvature). Thread-safety: const; this surface stays valid and
   /// unchanged.
@@ -228,6 +257,10 @@ public:
   /// face and `check` lists them; the surface is still built and evaluated.
   const std::vector<int> &foldedFaces() const;
   const SurfaceOptions &options() const;
+  /// The options face f is built with: options(), except for the master
+  /// faces a gregory-g2 surface keeps as G¹ patches (MasterFaces::KeptG1):
+  /// gregory-g1 with the radial sweep there.
+  SurfaceOptions faceOptions(int face) const;
   int faceCount() const;
 
   /// Sides of face f's domain polygon (the face's side count; 4 for 2-sided faces).
@@ -264,7 +297,7 @@ public:
   /// Serial; thread-safe (call it from several threads on disjoint outputs).
   void evaluatePositions(int face, std::span<const Vec2> uv, std::span<Vec3> out) const;
 
-  /// Evaluates with second derivatives. gregory-g2: exact, by hyper-dual
+  /// Evaluates with second derivatives. gregory-g2 faces (faceOptions): exact, by hyper-dual
   /// numbers through the whole formula (sweepline roots by implicit
   /// differentiation; only the ribbons' C'' is a fourth-order difference of the
   /// exact C', which matters away from the boundary only); `step` is ignored.

@@ -41,6 +41,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "bezier/quintic.hpp"
@@ -102,11 +103,17 @@ QuinticPatch::Point evaluateBezierFace(const BezierSurfaceData &data, int face, 
 
 class Surface;
 class Patch;
-/// The Bézier data of a surface built with bezier-g1 or coons-c0 (nullptr otherwise).
+class NormalFence;
+/// Engine-internal access to a surface's parts.
 struct SurfaceAccess {
+  /// The Bézier data of a surface built with bezier-g1 or coons-c0 (nullptr otherwise).
   static const bezier::BezierSurfaceData *bezierData(const Surface &surface);
   /// The transfinite patch of a face (nullptr for the Bézier schemes).
   static const Patch *patch(const Surface &surface, int face);
+  /// The same patch and a segment's fence, shared (a gregory-g2 surface
+  /// keeping its master faces' G¹ patches holds those of its G¹ surface).
+  static std::shared_ptr<const Patch> sharedPatch(const Surface &surface, int face);
+  static std::shared_ptr<const NormalFence> sharedFence(const Surface &surface, int segment);
 };
 
 } // namespace v1

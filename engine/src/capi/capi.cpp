@@ -69,7 +69,8 @@ curvenet_status_code guarded(curvenet_status *status, Body &&body) noexcept {
 SurfaceOptions toOptions(const curvenet_surface_options *options) {
   if (!options) return {};
   return {static_cast<Scheme>(options->scheme), static_cast<Sweepline>(options->sweepline),
-          static_cast<FenceNormals>(options->fence_normals), static_cast<EdgeCurvature>(options->edge_curvature)};
+          static_cast<FenceNormals>(options->fence_normals), static_cast<EdgeCurvature>(options->edge_curvature),
+          static_cast<MasterFaces>(options->master_faces)};
 }
 
 /// Enum values outside their range would reach the engine as invalid enums.
@@ -87,10 +88,12 @@ bool validOptions(const curvenet_surface_options *o) {
   if (!o) return true;
   const int scheme = rawValue(o->scheme), sweepline = rawValue(o->sweepline);
   const int fence = rawValue(o->fence_normals), curvature = rawValue(o->edge_curvature);
+  const int masters = rawValue(o->master_faces);
   return scheme >= CURVENET_GREGORY_G1 && scheme <= CURVENET_COONS_C0 && sweepline >= CURVENET_SWEEPLINE_AUTO &&
          sweepline <= CURVENET_SWEEPLINE_QUINTIC_HERMITE && fence >= CURVENET_FENCE_AUTO &&
          fence <= CURVENET_FENCE_REFERENCE && curvature >= CURVENET_EDGE_CURVATURE_MASTER_SLAVE &&
-         curvature <= CURVENET_EDGE_CURVATURE_REFERENCE;
+         curvature <= CURVENET_EDGE_CURVATURE_REFERENCE && masters >= CURVENET_MASTER_FACES_REBUILT &&
+         masters <= CURVENET_MASTER_FACES_KEPT_G1;
 }
 
 std::vector<Vec3> toPoints(const double *xyz, std::size_t count) {
@@ -208,7 +211,7 @@ void curvenet_surface_options_init(curvenet_surface_options *options) {
   const SurfaceOptions d;
   *options = {static_cast<curvenet_scheme>(d.scheme), static_cast<curvenet_sweepline>(d.sweepline),
               static_cast<curvenet_fence_normals>(d.fenceNormals),
-              static_cast<curvenet_edge_curvature>(d.edgeCurvature)};
+              static_cast<curvenet_edge_curvature>(d.edgeCurvature), static_cast<curvenet_master_faces>(d.masterFaces)};
 }
 
 void curvenet_batch_options_init(curvenet_batch_options *options) {

@@ -45,7 +45,7 @@ R guarded(Body &&body) noexcept {
 
 bool sameOptions(const SurfaceOptions &a, const SurfaceOptions &b) {
   return a.scheme == b.scheme && a.sweepline == b.sweepline && a.fenceNormals == b.fenceNormals &&
-         a.edgeCurvature == b.edgeCurvature;
+         a.edgeCurvature == b.edgeCurvature && a.masterFaces == b.masterFaces;
 }
 
 std::string faceName(int face) { return "face " + std::to_string(face); }
@@ -373,7 +373,7 @@ Result<Vec2> Model::domainCorner(int face, int corner) const {
 }
 
 bool Model::hasExactSecondDerivatives(int face) const {
-  return impl_->validFace(face) && impl_->faceOptions[face].scheme == Scheme::GregoryG2;
+  return impl_->validFace(face) && impl_->surfaceOf(face).faceOptions(face).scheme == Scheme::GregoryG2;
 }
 
 const SurfaceOptions &Model::faceOptions(int face) const {

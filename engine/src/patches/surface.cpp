@@ -62,6 +62,20 @@ std::optional<EdgeCurvature> edgeCurvatureFromName(const std::string &name) {
   return std::nullopt;
 }
 
+std::string masterFacesName(MasterFaces masters) {
+  switch (masters) {
+  case MasterFaces::Rebuilt: return "rebuilt";
+  case MasterFaces::KeptG1: return "kept-g1";
+  }
+  return "?";
+}
+
+std::optional<MasterFaces> masterFacesFromName(const std::string &name) {
+  for (MasterFaces m : {MasterFaces::Rebuilt, MasterFaces::KeptG1})
+    if (masterFacesName(m) == name) return m;
+  return std::nullopt;
+}
+
 double SurfacePoint2::normalCurvature(const Vec3 &direction) const {
   // Least-squares domain direction (a, b) with a du + b dv ≈ direction.
   const double g11 = dot(du, du), g12 = dot(du, dv), g22 = dot(dv, dv);
@@ -186,6 +200,9 @@ struct Surface::Impl {
   /// named masters, connection curves): the G¹ surface measured, kept so that
   /// an edit rebuilds only its faces near the edit.
   std::shared_ptr<const Surface> g1;
+  /// gregory-g2 with MasterFaces::KeptG1: per face, whether it is a master
+  /// face kept as its patch in `g1` (empty when no face is).
+  std::vector<char> keptG1;
   std::vector<std::shared_ptr<const Patch>> patches;
   using DomainSide = DomainSideRange;
   /// Per face: the face side and side-parameter range of each domain side.
@@ -200,6 +217,14 @@ const bezier::BezierSurfaceData *SurfaceAccess::bezierData(const Surface &surfac
 
 const Patch *SurfaceAccess::patch(const Surface &surface, int face) {
   return surface.impl_->bezier ? nullptr : surface.impl_->patches.at(face).get();
+}
+
+std::shared_ptr<const Patch> SurfaceAccess::sharedPatch(const Surface &surface, int face) {
+  return surface.impl_->patches.at(face);
+}
+
+std::shared_ptr<const NormalFence> SurfaceAccess::sharedFence(const Surface &surface, int segment) {
+  return surface.impl_->fences.at(segment);
 }
 
 namespace {
@@ -271,9 +296,33 @@ void buildVertexData(Impl &impl, std::span<const int> vertices) {
   }
 }
 
+bool keptG1(const Impl &impl, int face) { return face >= 0 && !impl.keptG1.empty() && impl.keptG1[face]; }
+
+/// The side (0 or 1) of a segment whose face is kept as its G¹ patch while
+/// the other is not; -1 otherwise (MasterFaces::KeptG1).
+int keptSide(const Impl &impl, const Segment &seg) {
+  const bool first = keptG1(impl, seg.faces[0]), second = keptG1(impl, seg.faces[1]);
+  return first == second ? -1 : first ? 0 : 1;
+}
+
+/// The master faces a gregory-g2 surface keeps as G¹ patches (empty when none).
+std::vector<char> keptG1Faces(const Network &network, const SurfaceOptions &options) {
+  std::vector<char> kept;
+  if (options.scheme != Scheme::GregoryG2 || options.masterFaces != MasterFaces::KeptG1) return kept;
+  for (const Segment &seg : network.segments())
+    if (seg.masterFace >= 0) {
+      kept.resize(network.faces().size(), 0);
+      kept[seg.masterFace] = 1;
+    }
+  return kept;
+}
+
 /// The normal fence of segment e (shared by both faces of the edge).
 std::shared_ptr<const NormalFence> buildFence(const Impl &impl, int e) {
   const Segment &seg = impl.network.segments()[e];
+  // An edge of a kept G¹ face keeps that patch's fence: the G² face across
+  // it then shares its tangent planes along the whole edge.
+  if (keptG1(impl, seg.faces[0]) || keptG1(impl, seg.faces[1])) return SurfaceAccess::sharedFence(*impl.g1, e);
   const Vec3 n0 = impl.frames[seg.start].normal, n1 = impl.frames[seg.end].normal;
   if (impl.referenceFences) {
     // The reference surface's normal, turned to the side the faces' loops give.
@@ -315,8 +364,12 @@ std::shared_ptr<const TransversalCurvature> buildEdgeCurvature(const Impl &impl,
   // faces[0] for MasterSlave; -1 averages both (Averaging).
   // Connection curves: both sides, averaged (-1), like named masters
   // independent of the source chosen for the other edges.
-  const bool namedMaster = seg.masterFace >= 0 || seg.connection;
+  // An edge between a kept G¹ face and a G² face takes the kept patch's
+  // curvature, as if it named that face.
+  const int kept = keptSide(impl, seg);
+  const bool namedMaster = seg.masterFace >= 0 || seg.connection || kept >= 0;
   const int masterSide = seg.masterFace >= 0                                   ? (seg.faces[0] == seg.masterFace ? 0 : 1)
+                         : kept >= 0                                           ? kept
                          : seg.connection                                      ? -1
                          : options.edgeCurvature == EdgeCurvature::MasterSlave ? 0
                                                                                : -1;
@@ -393,6 +446,14 @@ FaceBuild buildFace(const Impl &impl, int f) {
   const Face &face = impl.network.faces()[f];
   const bool g2 = impl.options.scheme == Scheme::GregoryG2;
   FaceBuild result;
+  if (keptG1(impl, f)) {
+    // The G¹ surface's own patch, shared.
+    const Surface &g1 = *impl.g1;
+    result.patch = SurfaceAccess::sharedPatch(g1, f);
+    for (int i = 0; i < g1.domainSides(f); ++i) result.sides.push_back(g1.domainSideRange(f, i));
+    result.folded = std::binary_search(g1.foldedFaces().begin(), g1.foldedFaces().end(), f);
+    return result;
+  }
   std::vector<Impl::DomainSide> &sides = result.sides;
   for (int k = 0; k < face.sideCount(); ++k) {
     if (face.sideCount() == 2) {
@@ -602,15 +663,17 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
   }
   buildVertexData(*impl, vertices);
   const std::vector<int> segments = allIndices(network.segments().size());
-  buildEdges(*impl, segments);
   if (g2) {
     // Edges with an explicit master (paper 000 Sec. 5.1) take its curvature
     // whatever the source elsewhere, so they need the G¹ patches too.
-    // Connection curves (Sec. 5.2) always average the two G¹ patches.
+    // Connection curves (Sec. 5.2) always average the two G¹ patches. Kept
+    // master faces are those patches, with their fences.
     if (needsG1Surface(network, options))
       impl->g1 = std::make_shared<const Surface>(Surface::build(network, g1Options(options)));
-    buildEdgeCurvatures(*impl, segments);
+    impl->keptG1 = keptG1Faces(network, options);
   }
+  buildEdges(*impl, segments);
+  if (g2) buildEdgeCurvatures(*impl, segments);
   buildFaces(*impl, allIndices(network.faces().size()));
   Surface surface;
   surface.impl_ = std::move(impl);
@@ -619,7 +682,9 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
 
 SurfaceEdit Surface::rebuildAfterEdit(const Network &edited) const {
   const Impl &old = *impl_;
-  const bool partial = !old.bezier && old.origin == Vec3{} && !needsOriginShift(edited) &&
+  // Kept G¹ master faces: a full build (their fences and patches come from
+  // the G¹ surface, which an edit rebuilds in part by itself).
+  const bool partial = !old.bezier && old.keptG1.empty() && old.origin == Vec3{} && !needsOriginShift(edited) &&
                        sameTopology(old.network, edited);
   if (!partial) return {build(edited, old.options), allIndices(edited.faces().size()), false};
 
@@ -679,6 +744,10 @@ const Network &Surface::network() const { return impl_->network; }
 Vec3 Surface::origin() const { return impl_->origin; }
 const std::vector<int> &Surface::foldedFaces() const { return impl_->folded; }
 const SurfaceOptions &Surface::options() const { return impl_->options; }
+SurfaceOptions Surface::faceOptions(int face) const {
+  if (face < 0 || face >= faceCount()) throw InputError("", "face " + std::to_string(face), "no such face");
+  return keptG1(*impl_, face) ? g1Options(impl_->options) : impl_->options;
+}
 int Surface::faceCount() const {
   return static_cast<int>(impl_->bezier ? impl_->bezier->faces.size() : impl_->patches.size());
 }
@@ -768,7 +837,7 @@ SurfacePoint Surface::evaluate(int face, const Vec2 &uv) const {
 
 SurfacePoint2 Surface::evaluateSecondOrder(int face, const Vec2 &uv, double step) const {
   if (!(step >= 1e-8 && step <= 1e-2)) throw InputError("", "step", "must lie in [1e-8, 1e-2]");
-  if (impl_->options.scheme == Scheme::GregoryG2) {
+  if (faceOptions(face).scheme == Scheme::GregoryG2) {
     // Exact: hyper-dual evaluation.
     const Dual2Vec3 r = impl_->patches.at(face)->evaluateSecondOrder(uv.x, uv.y);
     SurfacePoint2 p;

@@ -152,7 +152,7 @@ std::vector<Tile> planTiles(const Surface &surface, int resolution,
   plans.assign(static_cast<std::size_t>(surface.faceCount()), nullptr);
   for (int f = 0; f < surface.faceCount(); ++f) {
     if (!wanted(f)) continue;
-    plans[f] = evaluationPlan(planKey(surface.options(), surface.domainSides(f), resolution));
+    plans[f] = evaluationPlan(planKey(surface.faceOptions(f), surface.domainSides(f), resolution));
     const std::size_t size = plans[f]->size();
     for (const auto &[first, count] : plans[f]->ranges(kTileSamples)) tiles.push_back({f, first, count});
     total += size;
