@@ -223,7 +223,9 @@ public:
   /// first derivatives.
   bool hasExactSecondDerivatives(int face) const;
 
-  /// The options face `face` uses; the first face's for an index out of range.
+  /// The options face `face` uses (as set: a master face that gregory-g2
+  /// keeps as its G¹ patch, MasterFaces::KeptG1, reports the gregory-g2
+  /// options it was given); the first face's for an index out of range.
   const SurfaceOptions &faceOptions(int face) const;
   /// Distinct option sets, i.e. Surfaces the model holds (≥ 1).
   int surfaceCount() const;
