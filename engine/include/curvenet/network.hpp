@@ -41,8 +41,7 @@ struct FaceDescription {
   std::string name;                   ///< optional, for reports
   /// Inner loops (holes), each a loop of sides like `sides`, in either
   /// direction. A face with holes is split by connection curves (see
-  /// insertConnectionCurves); at most one hole per face, with as many sides
-  /// as the outer loop.
+  /// insertConnectionCurves); at most one hole per face.
   std::vector<std::vector<SideDescription>> holes;
   /// Set by insertConnectionCurves on every face of a split description: the
   /// index of the user's face this loop is a part of. -1: the face itself.
@@ -90,10 +89,16 @@ struct NetworkDescription {
 ///    loop vertex or side midpoint that splits it best — the one whose four
 ///    new corner angles stay farthest from 0 and from a straight angle;
 ///    parts that are still concave are split again;
-///  * a hole is joined to the outer loop by one curve per outer corner,
-///    corner i to the hole corner that pairs with it (the rotation of the
-///    hole's corners with the least total distance), which makes n
-///    four-sided faces.
+///  * a hole is joined to the outer loop by one curve per corner, corner i
+///    to the hole corner that pairs with it (the rotation of the hole's
+///    corners with the least total distance), which makes n four-sided
+///    faces. When the two loops have different side counts, the one with
+///    fewer sides first gets points inside its sides (the curve running
+///    straight on through each: T-nodes), so that both have n = max(outer,
+///    hole) corners; pairing and points are chosen so that the connection
+///    curves leave both loops as square as the corners allow (the sum over
+///    the curves of 1 − cos of the angles between each chord and the
+///    loops' inward normals, at a corner its bisector).
 /// Each connection curve is a cubic whose end tangents lie in the tangent
 /// planes at its ends (the plane of the two loop tangents at a corner; at a
 /// side midpoint, the side tangent and the average of the side's corner
@@ -106,9 +111,8 @@ struct NetworkDescription {
 /// that is split is replaced by its part bordering the curve.
 /// Returns the description unchanged when no face needs splitting (and
 /// when `connectionCurves` is false). Throws InputError naming `file` and
-/// the face for a hole that cannot be joined (more than one hole, a side
-/// count other than the outer loop's, bad curve references). Cost: a few
-/// curve evaluations per side.
+/// the face for a hole that cannot be joined (more than one hole, bad curve
+/// references). Cost: a few curve evaluations per side.
 NetworkDescription insertConnectionCurves(const NetworkDescription &description, const std::string &file = {});
 
 /// Vertex kinds by paper 000 Fig. 1 (n = independent curves).

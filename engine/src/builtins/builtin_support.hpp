@@ -54,7 +54,9 @@ BuiltinData saddleNodes();
 
 // Loops that need connection curves (paper 000 Sec. 5.2), see composite.cpp.
 BuiltinData concaveL();
-BuiltinData ring();
+/// `holeSides` arcs make the hole (the built-in `ring`: 4, each facing an
+/// outer corner).
+BuiltinData ring(int holeSides = 4);
 
 // Master–slave vertex blend (paper 000 Sec. 5.1, Fig. 8), see setback.cpp.
 BuiltinData setbackVertexBlend();

@@ -86,7 +86,7 @@ BuiltinData concaveL() {
   return data;
 }
 
-BuiltinData ring() {
+BuiltinData ring(int holeSides) {
   BuiltinData data;
   data.network = bowlNetwork("ring");
   Bowl bowl{data.network};
@@ -96,11 +96,12 @@ BuiltinData ring() {
   for (int k = 0; k < 4; ++k)
     face.sides.push_back({bowl.line(corners[k][0], corners[k][1], corners[(k + 1) % 4][0], corners[(k + 1) % 4][1]),
                           0.0, 1.0});
-  // Clockwise quarter arcs from 225° down to −135°.
+  // Clockwise arcs from 225° down to −135° (quarter arcs for the built-in).
   std::vector<SideDescription> hole;
-  for (int k = 0; k < 4; ++k) {
-    const double a0 = 1.25 * std::numbers::pi - k * std::numbers::pi / 2;
-    hole.push_back({bowl.arc(0.45, a0, a0 - std::numbers::pi / 2), 0.0, 1.0});
+  const double span = 2 * std::numbers::pi / holeSides;
+  for (int k = 0; k < holeSides; ++k) {
+    const double a0 = 1.25 * std::numbers::pi - k * span;
+    hole.push_back({bowl.arc(0.45, a0, a0 - span), 0.0, 1.0});
   }
   face.holes.push_back(hole);
   data.network.faces.push_back(face);

@@ -2,7 +2,9 @@
 // (paper 000 Sec. 5.2). Works on the description alone (curves and loops),
 // before any topology exists, so Network::build can call it first.
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <optional>
 
@@ -24,6 +26,9 @@ constexpr double kConcaveMargin = 0.2;
 constexpr double kMinSplitAngle = 0.1;
 // Parts still concave after a split are split again, to this depth.
 constexpr int kMaxSplitDepth = 8;
+// Sides of a face with a hole and of its hole: the pairing of their corners
+// costs O(n⁴) (Splitter::matchCorners).
+constexpr int kMaxRingSides = 64;
 
 /// Point and unit tangent (in the loop direction) of a side at s ∈ [0, 1].
 struct SidePoint {
@@ -216,27 +221,36 @@ public:
     return std::make_pair(std::move(a), std::move(b));
   }
 
-  /// n four-sided parts of a face with one hole of n sides.
-  std::vector<Loop> ring(const Loop &outer, Loop hole, const std::string &file, const std::string &element) {
-    const int n = static_cast<int>(outer.size());
-    if (static_cast<int>(hole.size()) != n)
-      throw InputError(file, element,
-                       "the hole has " + std::to_string(hole.size()) + " sides and the outer loop " +
-                           std::to_string(n) + ": connection curves join corner to corner, so the counts must agree");
+  /// The four-sided parts of a face with one hole: one connection curve per
+  /// corner of the loop with more sides, so max(outer, hole sides) parts.
+  std::vector<Loop> ring(Loop outer, Loop hole) {
     const Vec3 faceNormal = newellNormal(curves_, outer);
     // The hole's corners in the outer loop's turning direction.
     if (dot(newellNormal(curves_, hole), faceNormal) < 0) {
       std::reverse(hole.begin(), hole.end());
       for (SideDescription &side : hole) side = reversedSide(side);
     }
+    // The loop with fewer sides gets points where its curves run straight
+    // on (T-nodes of the split network), so that each corner of the other
+    // has a partner (see matchCorners).
     int rotation = 0;
-    double best = INFINITY;
-    for (int r = 0; r < n; ++r) {
-      double total = 0;
-      for (int i = 0; i < n; ++i)
-        total += norm(sidePoint(curves_, outer[i], 0).point - sidePoint(curves_, hole[(i + r) % n], 0).point);
-      if (total < best) best = total, rotation = r;
+    if (hole.size() == outer.size()) {
+      const int n = static_cast<int>(outer.size());
+      double best = INFINITY;
+      for (int r = 0; r < n; ++r) {
+        double total = 0;
+        for (int i = 0; i < n; ++i)
+          total += norm(sidePoint(curves_, outer[i], 0).point - sidePoint(curves_, hole[(i + r) % n], 0).point);
+        if (total < best) best = total, rotation = r;
+      }
+    } else if (hole.size() < outer.size()) {
+      // Hole point q pairs with outer corner first + q: outer i with hole i − first.
+      const int first = matchCorners(outer, hole, faceNormal, true);
+      rotation = static_cast<int>(outer.size()) - first;
+    } else {
+      rotation = matchCorners(hole, outer, faceNormal, false); // outer point q pairs with hole corner rotation + q
     }
+    const int n = static_cast<int>(outer.size());
     std::vector<int> joins(n);
     for (int i = 0; i < n; ++i) {
       joins[i] = static_cast<int>(curves_.size());
@@ -256,11 +270,143 @@ public:
 
   const std::vector<int> &connections() const { return connections_; }
 
+  /// Pairs the corners of `more` with those of `fewer` (fewer sides), in
+  /// loop order, and cuts `fewer`'s sides so that every corner of `more` has
+  /// a partner: each corner of `fewer` pairs with one of `more`, and the
+  /// corners of `more` in between pair with new points on the side between.
+  /// A connection curve is best when it leaves both loops square, into the
+  /// face: its chord along the loop's inward normal there (at a corner, that
+  /// of the mean of the two tangents, so along the corner's bisector). The
+  /// pairing, and each new point (among 64 along its side), minimize the sum
+  /// over the chords of 1 − cos of those angles at both ends, distance
+  /// breaking ties. Both loops run counter-clockwise about `faceNormal`, the
+  /// face to the left of the outer loop and to the right of the hole.
+  /// Returns `first`: point q of the cut `fewer` pairs with corner first + q
+  /// (mod n) of `more`.
+  int matchCorners(const Loop &more, Loop &fewer, const Vec3 &faceNormal, bool moreIsOuter) const {
+    const int n = static_cast<int>(more.size()), m = static_cast<int>(fewer.size());
+    constexpr int kSamples = 64;
+    struct Point {
+      Vec3 point, inward;
+    };
+    const double moreSide = moreIsOuter ? 1.0 : -1.0;
+    auto inward = [&](const Vec3 &tangent, double side) { return normalized(cross(faceNormal, tangent)) * side; };
+    auto cornerOf = [&](const Loop &loop, int k, double side) {
+      const int size = static_cast<int>(loop.size());
+      const SidePoint in = sidePoint(curves_, loop[(k + size - 1) % size], 1), out = sidePoint(curves_, loop[k], 0);
+      const Vec3 mean = in.tangent + out.tangent;
+      return Point{out.point, inward(norm(mean) > 1e-9 ? normalized(mean) : out.tangent, side)};
+    };
+    std::vector<Point> corner(n), fewerCorner(m);
+    for (int i = 0; i < n; ++i) corner[i] = cornerOf(more, i, moreSide);
+    for (int j = 0; j < m; ++j) fewerCorner[j] = cornerOf(fewer, j, -moreSide);
+    // Side j of `fewer` sampled inside (its ends are corners).
+    std::vector<std::array<Point, kSamples>> samples(m);
+    double size = 0;
+    for (int j = 0; j < m; ++j)
+      for (int k = 0; k < kSamples; ++k) {
+        const SidePoint p = sidePoint(curves_, fewer[j], (k + 1.0) / (kSamples + 1));
+        samples[j][k] = {p.point, inward(p.tangent, -moreSide)};
+        size = std::max(size, norm(p.point - corner[0].point));
+      }
+    auto cost = [&](const Point &a, const Point &b) -> double {
+      const Vec3 chord = b.point - a.point;
+      const double length = norm(chord);
+      if (!(length > 0)) return INFINITY;
+      const Vec3 u = chord / length;
+      return (1 - dot(u, a.inward)) + (1 + dot(u, b.inward)) + 1e-3 * length / size;
+    };
+    auto best = [&](int j, const Point &a, double &c) {
+      int at = 0;
+      c = INFINITY;
+      for (int k = 0; k < kSamples; ++k)
+        if (const double d = cost(a, samples[j][k]); d < c) c = d, at = k;
+      return (at + 1.0) / (kSamples + 1);
+    };
+    // pair[j][i]: corner j of `fewer` with corner i of `more`; cutCost[j][i]:
+    // corner i of `more` with its best point on side j.
+    std::vector<std::vector<double>> pair(m, std::vector<double>(n)), cutCost = pair;
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < n; ++i) pair[j][i] = cost(corner[i], fewerCorner[j]), best(j, corner[i], cutCost[j][i]);
+    // Corner j of `fewer` pairs with corner first + offset[j] of `more`,
+    // 0 = offset[0] < offset[1] < … < offset[m − 1] < n; the corners of
+    // `more` in between are cut onto side j. For each first, by dynamic
+    // programming over j: total[j][o], the least cost of sides 0 … j − 1
+    // with offset[j] = o. O(m n³) in all (n ≤ kMaxRingSides).
+    std::vector<int> bestOffset(m);
+    for (int j = 0; j < m; ++j) bestOffset[j] = j; // if no pairing has a finite cost
+    int bestFirst = 0;
+    double bestCost = INFINITY;
+    std::vector<std::vector<double>> total(m, std::vector<double>(n + 1));
+    std::vector<std::vector<int>> previous(m, std::vector<int>(n + 1)); // offset[j − 1] on the best path
+    std::vector<std::vector<double>> prefix(m, std::vector<double>(n + 1));
+    for (int first = 0; first < n; ++first) {
+      for (int j = 0; j < m; ++j)
+        for (int i = 1; i <= n; ++i) prefix[j][i] = prefix[j][i - 1] + cutCost[j][(first + i - 1) % n];
+      auto corners = [&](int j, int o, int next) { // side j from offset o to next: its pair, then the cuts
+        return pair[j][(first + o) % n] + prefix[j][next] - prefix[j][o + 1];
+      };
+      for (auto &row : total) std::fill(row.begin(), row.end(), INFINITY);
+      total[0][0] = 0;
+      for (int j = 0; j + 1 < m; ++j)
+        for (int o = j; o < n; ++o) {
+          if (!(total[j][o] < INFINITY)) continue;
+          for (int next = o + 1; next <= n - (m - j - 1); ++next)
+            if (const double t = total[j][o] + corners(j, o, next); t < total[j + 1][next])
+              total[j + 1][next] = t, previous[j + 1][next] = o;
+        }
+      for (int o = m - 1; o < n; ++o) {
+        if (!(total[m - 1][o] < INFINITY)) continue;
+        const double t = total[m - 1][o] + corners(m - 1, o, n);
+        if (!(t < bestCost)) continue;
+        bestCost = t, bestFirst = first;
+        for (int j = m - 1, at = o; j >= 0; at = previous[j][at], --j) bestOffset[j] = at;
+      }
+    }
+    // The cuts: on side j, one per corner of `more` between its partners, in
+    // order (if the best points are not, evenly spaced instead).
+    Loop cut;
+    for (int j = 0; j < m; ++j) {
+      const int from = bestOffset[j], to = j + 1 < m ? bestOffset[j + 1] : n;
+      const SideDescription &side = fewer[j];
+      std::vector<double> at;
+      for (int i = from + 1; i < to; ++i) {
+        double c;
+        at.push_back(best(j, corner[(bestFirst + i) % n], c));
+      }
+      if (std::adjacent_find(at.begin(), at.end(), std::greater_equal<>()) != at.end())
+        for (std::size_t k = 0; k < at.size(); ++k) at[k] = (k + 1.0) / (at.size() + 1);
+      double last = 0;
+      for (double t : at) {
+        cut.push_back({side.curve, side.from + last * (side.to - side.from), side.from + t * (side.to - side.from)});
+        last = t;
+      }
+      cut.push_back({side.curve, side.from + last * (side.to - side.from), side.to});
+    }
+    fewer = std::move(cut);
+    return bestFirst;
+  }
+
 private:
   std::vector<BSplineCurve> &curves_;
   const std::optional<ReferenceSurface> &reference_;
   std::vector<int> connections_;
 };
+
+/// InputError when consecutive sides of `loop` (valid, see loopIsValid) do
+/// not meet within `tolerance`: checked before a hole is joined, whose parts
+/// would otherwise carry the gap into loops the user never wrote.
+void requireClosed(const std::vector<BSplineCurve> &curves, const Loop &loop, double tolerance, const std::string &file,
+                   const std::string &element) {
+  const int n = static_cast<int>(loop.size());
+  for (int k = 0; k < n; ++k) {
+    const Vec3 a = sidePoint(curves, loop[k], 1).point, b = sidePoint(curves, loop[(k + 1) % n], 0).point;
+    if (norm(a - b) > tolerance)
+      throw InputError(file, element,
+                       "does not close: side " + std::to_string(k) + " ends " + std::to_string(norm(a - b)) +
+                           " away from where side " + std::to_string((k + 1) % n) + " starts");
+  }
+}
 
 /// True when every side refers to an existing curve inside its domain (else
 /// the loop is left to Network::build, which names the fault).
@@ -283,6 +429,11 @@ NetworkDescription insertConnectionCurves(const NetworkDescription &description,
   NetworkDescription out = description;
   out.faces.clear();
   Splitter splitter(out.curves, description.reference);
+  // Network::build's vertex tolerance (it checks the description's value).
+  BoundingBox bounds;
+  for (const BSplineCurve &c : description.curves)
+    for (const Vec3 &p : c.controlPoints()) bounds.add(p);
+  const double tolerance = description.tolerance * bounds.diagonal();
   std::vector<std::vector<int>> partsOf(description.faces.size());
   bool changed = false;
   for (size_t f = 0; f < description.faces.size(); ++f) {
@@ -296,7 +447,16 @@ NetworkDescription insertConnectionCurves(const NetworkDescription &description,
         throw InputError(file, element + " hole", "a side refers to a missing curve or a range outside it");
       if (!loopIsValid(description.curves, face.sides))
         throw InputError(file, element, "a side refers to a missing curve or a range outside it");
-      parts = splitter.ring(face.sides, face.holes[0], file, element);
+      for (const Loop *loop : {&face.sides, &face.holes[0]})
+        if (loop->size() > static_cast<std::size_t>(kMaxRingSides))
+          throw InputError(file, loop == &face.sides ? element : element + " hole",
+                           std::to_string(loop->size()) + " sides; a face with a hole and its hole may have up to " +
+                               std::to_string(kMaxRingSides) + " each");
+      if (std::isfinite(tolerance) && tolerance > 0) {
+        requireClosed(description.curves, face.sides, tolerance, file, element);
+        requireClosed(description.curves, face.holes[0], tolerance, file, element + " hole");
+      }
+      parts = splitter.ring(face.sides, face.holes[0]);
     } else if (loopIsValid(description.curves, face.sides) && face.sides.size() >= 3) {
       parts = splitter.convexParts(face.sides);
     } else {
