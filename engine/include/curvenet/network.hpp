@@ -89,16 +89,15 @@ struct NetworkDescription {
 ///    loop vertex or side midpoint that splits it best — the one whose four
 ///    new corner angles stay farthest from 0 and from a straight angle;
 ///    parts that are still concave are split again;
-///  * a hole is joined to the outer loop by one curve per corner, corner i
-///    to the hole corner that pairs with it (the rotation of the hole's
-///    corners with the least total distance), which makes n four-sided
-///    faces. When the two loops have different side counts, the one with
-///    fewer sides first gets points inside its sides (the curve running
-///    straight on through each: T-nodes), so that both have n = max(outer,
-///    hole) corners; pairing and points are chosen so that the connection
-///    curves leave both loops as square as the corners allow (the sum over
-///    the curves of 1 − cos of the angles between each chord and the
-///    loops' inward normals, at a corner its bisector).
+///  * a hole is joined to the outer loop by one curve per corner, each
+///    outer corner to the hole corner it pairs with, which makes n
+///    four-sided faces. When the two loops have different side counts, the
+///    one with fewer sides first gets points inside its sides (the curve
+///    running straight on through each: T-nodes), so that both have
+///    n = max(outer, hole) corners. The pairing (and these points) make the
+///    connection curves leave both loops as square as the corners allow:
+///    the least sum over the curves of 1 − cos of the angles between each
+///    chord and the loops' inward normals (at a corner, its bisector).
 /// Each connection curve is a cubic whose end tangents lie in the tangent
 /// planes at its ends (the plane of the two loop tangents at a corner; at a
 /// side midpoint, the side tangent and the average of the side's corner

@@ -230,26 +230,15 @@ public:
       std::reverse(hole.begin(), hole.end());
       for (SideDescription &side : hole) side = reversedSide(side);
     }
-    // The loop with fewer sides gets points where its curves run straight
-    // on (T-nodes of the split network), so that each corner of the other
-    // has a partner (see matchCorners).
-    int rotation = 0;
-    if (hole.size() == outer.size()) {
-      const int n = static_cast<int>(outer.size());
-      double best = INFINITY;
-      for (int r = 0; r < n; ++r) {
-        double total = 0;
-        for (int i = 0; i < n; ++i)
-          total += norm(sidePoint(curves_, outer[i], 0).point - sidePoint(curves_, hole[(i + r) % n], 0).point);
-        if (total < best) best = total, rotation = r;
-      }
-    } else if (hole.size() < outer.size()) {
-      // Hole point q pairs with outer corner first + q: outer i with hole i − first.
-      const int first = matchCorners(outer, hole, faceNormal, true);
-      rotation = static_cast<int>(outer.size()) - first;
-    } else {
-      rotation = matchCorners(hole, outer, faceNormal, false); // outer point q pairs with hole corner rotation + q
-    }
+    // Corner pairs (see matchCorners); the loop with fewer sides gets points
+    // where its curves run straight on (T-nodes of the split network), so
+    // that each corner of the other has a partner. Outer corner i pairs
+    // with hole corner i + rotation.
+    int rotation;
+    if (hole.size() <= outer.size())
+      rotation = static_cast<int>(outer.size()) - matchCorners(outer, hole, faceNormal, true);
+    else
+      rotation = matchCorners(hole, outer, faceNormal, false);
     const int n = static_cast<int>(outer.size());
     std::vector<int> joins(n);
     for (int i = 0; i < n; ++i) {
@@ -324,10 +313,10 @@ public:
       return (at + 1.0) / (kSamples + 1);
     };
     // pair[j][i]: corner j of `fewer` with corner i of `more`; cutCost[j][i]:
-    // corner i of `more` with its best point on side j.
-    std::vector<std::vector<double>> pair(m, std::vector<double>(n)), cutCost = pair;
+    // corner i of `more` with its best point on side j, at cutAt[j][i].
+    std::vector<std::vector<double>> pair(m, std::vector<double>(n)), cutCost = pair, cutAt = pair;
     for (int j = 0; j < m; ++j)
-      for (int i = 0; i < n; ++i) pair[j][i] = cost(corner[i], fewerCorner[j]), best(j, corner[i], cutCost[j][i]);
+      for (int i = 0; i < n; ++i) pair[j][i] = cost(corner[i], fewerCorner[j]), cutAt[j][i] = best(j, corner[i], cutCost[j][i]);
     // Corner j of `fewer` pairs with corner first + offset[j] of `more`,
     // 0 = offset[0] < offset[1] < … < offset[m − 1] < n; the corners of
     // `more` in between are cut onto side j. For each first, by dynamic
@@ -370,10 +359,7 @@ public:
       const int from = bestOffset[j], to = j + 1 < m ? bestOffset[j + 1] : n;
       const SideDescription &side = fewer[j];
       std::vector<double> at;
-      for (int i = from + 1; i < to; ++i) {
-        double c;
-        at.push_back(best(j, corner[(bestFirst + i) % n], c));
-      }
+      for (int i = from + 1; i < to; ++i) at.push_back(cutAt[j][(bestFirst + i) % n]);
       if (std::adjacent_find(at.begin(), at.end(), std::greater_equal<>()) != at.end())
         for (std::size_t k = 0; k < at.size(); ++k) at[k] = (k + 1.0) / (at.size() + 1);
       double last = 0;
