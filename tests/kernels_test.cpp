@@ -284,7 +284,9 @@ TEST(Kernels, GregoryPositionsAgreeAcrossWidthsAndWithTheFormula) {
 TEST(Kernels, TableEvaluationAgreesAcrossWidthsAndWithHorner) {
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(-2, 2), unit(0, 1);
-  for (int dims : {6, 9}) {
+  // 6 and 9: the engine's tables (kernels specialized for them); 3 and 5:
+  // the general path with a partial last group of four coordinates.
+  for (int dims : {3, 5, 6, 9}) {
     const int padded = (dims + 3) / 4 * 4;
     // Uneven intervals over [0, 1], a coarse grid: the forward search moves.
     std::vector<double> edges{0};
@@ -338,6 +340,11 @@ TEST(Kernels, TableEvaluationAgreesAcrossWidthsAndWithHorner) {
         ck::evaluateTable(kCount, table, s.data(), v.data(), sl.data(), w.id);
         EXPECT_LE(relativeDifference(values.data, horner), 1e-12) << w.name << " dims " << dims << " cells " << cells;
         EXPECT_LE(relativeDifference(slopes.data, hornerSlope), 1e-12) << w.name << " dims " << dims << " cells " << cells;
+        // Values alone (the position path): the same values.
+        Soa alone(dims, kCount);
+        for (int d = 0; d < dims; ++d) v[d] = alone[d];
+        ck::evaluateTable(kCount, table, s.data(), v.data(), nullptr, w.id);
+        EXPECT_EQ(alone.data, values.data) << w.name << " dims " << dims << " cells " << cells << " (values alone)";
       }
     }
   }

@@ -14,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 
 #include "curvenet/kernels/kernels.hpp"
 #include "dispatch.hpp"
@@ -94,10 +95,118 @@ HWY_INLINE void tablePolynomial(D d, const double *c, std::size_t row, V t, V in
   }
 }
 
+/// The intervals of s[k .. end) into interval, local (the local parameter)
+/// and inverse (the interval's 1 / width), `end − k` ≤ 64. Apart from the
+/// polynomials, the lookups' chains of dependent loads overlap with one
+/// another instead of stalling the polynomial work behind each sample's
+/// lookup. With cellFirstEnd, the cells four at a time (tableInterval's
+/// clamping: NaN and s ≤ 0 to the first cell, s ≥ 1 to the last), then one
+/// read per cell; else through tableInterval.
+template <class D>
+HWY_INLINE void tableLookups(D d, const ck::PolynomialTable &tb, const double *s, std::size_t k, std::size_t end,
+                             std::size_t *interval, double *local, double *inverse) {
+  using V = hn::Vec<D>;
+  HWY_ALIGN std::int64_t cellOf[64];
+  std::size_t vectorEnd = k;
+  if (tb.cellFirstEnd) {
+    const hn::RebindToSigned<D> di;
+    const V scale = hn::Set(d, static_cast<double>(tb.cells)), last = hn::Set(d, static_cast<double>(tb.cells - 1));
+    for (; vectorEnd + 4 <= end; vectorEnd += 4) {
+      const V scaled = hn::Mul(hn::LoadU(d, s + vectorEnd), scale);
+      const V cell = hn::Min(hn::IfThenElseZero(hn::Gt(scaled, hn::Zero(d)), scaled), last);
+      hn::Store(hn::ConvertTo(di, cell), di, cellOf + (vectorEnd - k));
+    }
+  }
+  for (std::size_t q = k; q < end; ++q) {
+    const double x = s[q];
+    std::size_t j;
+    if (q < vectorEnd) {
+      const auto cell = static_cast<std::size_t>(cellOf[q - k]);
+      j = tb.cellFirst[cell] + (tb.cellFirstEnd[cell] < x);
+    } else {
+      j = tableInterval(tb, x);
+    }
+    interval[q - k] = j, inverse[q - k] = tb.inverseWidths[j];
+    local[q - k] = (x - tb.starts[j]) * tb.inverseWidths[j];
+  }
+}
+
+#if HWY_TARGET != HWY_SCALAR
+/// Four samples' four-coordinate vectors r[q] stored as the coordinates'
+/// four-sample vectors out[x + c][k .. k + 4), c < `used`.
+template <std::size_t kUsed, class D, class V = hn::Vec<D>>
+HWY_INLINE void transposeStore(D d, const V (&r)[4], double *const *out, std::size_t x, std::size_t k) {
+  const V t0 = hn::InterleaveLower(d, r[0], r[1]), t1 = hn::InterleaveUpper(d, r[0], r[1]);
+  const V t2 = hn::InterleaveLower(d, r[2], r[3]), t3 = hn::InterleaveUpper(d, r[2], r[3]);
+  hn::StoreU(hn::ConcatLowerLower(d, t2, t0), d, out[x] + k);
+  if constexpr (kUsed > 1) hn::StoreU(hn::ConcatLowerLower(d, t3, t1), d, out[x + 1] + k);
+  if constexpr (kUsed > 2) hn::StoreU(hn::ConcatUpperUpper(d, t2, t0), d, out[x + 2] + k);
+  if constexpr (kUsed > 3) hn::StoreU(hn::ConcatUpperUpper(d, t3, t1), d, out[x + 3] + k);
+}
+
+/// RibbonTable evaluation of four samples at a time for a table of kDims
+/// coordinates, over D with four lanes that run across the coordinates;
+/// the four samples are transposed in registers so that the
+/// structure-of-arrays outputs are written as whole vectors. kDims known at
+/// compile time (the engine's tables: 6 for G¹ ribbons P, T, 9 for G² P, T,
+/// C) unrolls every loop and keeps the output pointers in registers; the
+/// general kDims = 0 reads tb.dims. Returns the samples done (a multiple of
+/// four); the rest is the caller's.
+template <bool Slopes, std::size_t kDims, class D>
+HWY_INLINE std::size_t evaluateTableFours(D d, std::size_t count, const TableArgs &a) {
+  using V = hn::Vec<D>;
+  const ck::PolynomialTable &tb = *a.table;
+  const std::size_t dims = kDims ? kDims : static_cast<std::size_t>(tb.dims);
+  const std::size_t row = kDims ? (kDims + 3) / 4 * 4 : static_cast<std::size_t>(tb.paddedDims);
+  constexpr std::size_t kOut = kDims ? kDims : 16; // the width-1 path's limit too
+  double *values[kOut], *slopes[kOut];
+  for (std::size_t x = 0; x < dims; ++x) values[x] = a.values[x], slopes[x] = Slopes ? a.slopes[x] : nullptr;
+  constexpr std::size_t kChunk = 64;
+  HWY_ALIGN std::size_t interval[kChunk];
+  HWY_ALIGN double local[kChunk], inverse[kChunk];
+  std::size_t k = 0;
+  for (std::size_t chunkStart = 0; chunkStart + 4 <= count; chunkStart += kChunk) {
+    const std::size_t chunkEnd = std::min(count, chunkStart + kChunk);
+    tableLookups(d, tb, a.s, chunkStart, chunkEnd, interval, local, inverse);
+    for (k = chunkStart; k + 4 <= chunkEnd; k += 4) {
+      const double *c[4];
+      V t[4], w[4];
+      for (std::size_t q = 0; q < 4; ++q) {
+        c[q] = tb.coefficients + interval[k - chunkStart + q] * 6 * row;
+        t[q] = hn::Set(d, local[k - chunkStart + q]), w[q] = hn::Set(d, inverse[k - chunkStart + q]);
+      }
+      auto chunk = [&](std::size_t x, auto used) {
+        V value[4], slope[4];
+        for (int q = 0; q < 4; ++q) tablePolynomial<Slopes>(d, c[q] + x, row, t[q], w[q], value[q], slope[q]);
+        transposeStore<decltype(used)::value>(d, value, values, x, k);
+        if constexpr (Slopes) transposeStore<decltype(used)::value>(d, slope, slopes, x, k);
+      };
+      if constexpr (kDims > 0) {
+        [&]<std::size_t... X>(std::index_sequence<X...>) {
+          (chunk(4 * X, std::integral_constant<std::size_t, std::min<std::size_t>(4, kDims - 4 * X)>()), ...);
+        }(std::make_index_sequence<(kDims + 3) / 4>());
+      } else {
+        for (std::size_t x = 0; x < dims; x += 4) {
+          switch (dims - x) {
+          case 1: chunk(x, std::integral_constant<std::size_t, 1>()); break;
+          case 2: chunk(x, std::integral_constant<std::size_t, 2>()); break;
+          case 3: chunk(x, std::integral_constant<std::size_t, 3>()); break;
+          default: chunk(x, std::integral_constant<std::size_t, 4>()); break;
+          }
+        }
+      }
+    }
+    if (chunkEnd == count) break;
+  }
+  return k;
+}
+
+#endif
+
 /// RibbonTable evaluation over D, a tag whose lanes run across the
-/// coordinates of one sample (rows are padded to a multiple of 4). With
-/// four lanes, four samples at a time are transposed in registers so that
-/// the structure-of-arrays outputs are written as whole vectors.
+/// coordinates of one sample (rows are padded to a multiple of 4): four
+/// samples at a time when D has four lanes (evaluateTableFours), the rest
+/// one at a time.
 template <bool Slopes, class D> HWY_INLINE void evaluateTableWith(D d, std::size_t count, const TableArgs &a) {
   using V = hn::Vec<D>;
   const ck::PolynomialTable &tb = *a.table;
@@ -107,64 +216,9 @@ template <bool Slopes, class D> HWY_INLINE void evaluateTableWith(D d, std::size
 #if HWY_TARGET != HWY_SCALAR
   if constexpr (hn::MaxLanes(D()) == 4) {
     if (lanes == 4) {
-      auto transposeStore = [&](V (&r)[4], double *const *out, std::size_t x) {
-        const V t0 = hn::InterleaveLower(d, r[0], r[1]), t1 = hn::InterleaveUpper(d, r[0], r[1]);
-        const V t2 = hn::InterleaveLower(d, r[2], r[3]), t3 = hn::InterleaveUpper(d, r[2], r[3]);
-        const V col[4] = {hn::ConcatLowerLower(d, t2, t0), hn::ConcatLowerLower(d, t3, t1),
-                          hn::ConcatUpperUpper(d, t2, t0), hn::ConcatUpperUpper(d, t3, t1)};
-        for (std::size_t c = 0; c < 4 && x + c < dims; ++c) hn::StoreU(col[c], d, out[x + c] + k);
-      };
-      // Intervals first, a chunk at a time, then the polynomials: apart, the
-      // lookups' chains of dependent loads overlap with one another instead
-      // of stalling the polynomial work behind each sample's lookup.
-      constexpr std::size_t kChunk = 64;
-      HWY_ALIGN std::size_t interval[kChunk];
-      HWY_ALIGN double local[kChunk], inverse[kChunk];
-      std::size_t chunkStart = 0, chunkEnd = 0;
-      for (; k + 4 <= count; k += 4) {
-        if (k + 4 > chunkEnd) {
-          chunkStart = k, chunkEnd = std::min(count, k + kChunk);
-          // With cellFirstEnd, the cells four at a time (tableInterval's
-          // clamping: NaN and s ≤ 0 to the first cell, s ≥ 1 to the last),
-          // then one read per cell; the rest through tableInterval.
-          HWY_ALIGN std::int64_t cellOf[kChunk];
-          std::size_t vectorEnd = k;
-          if (tb.cellFirstEnd) {
-            const hn::RebindToSigned<D> di;
-            const V scale = hn::Set(d, static_cast<double>(tb.cells)), last = hn::Set(d, static_cast<double>(tb.cells - 1));
-            for (; vectorEnd + 4 <= chunkEnd; vectorEnd += 4) {
-              const V scaled = hn::Mul(hn::LoadU(d, a.s + vectorEnd), scale);
-              const V cell = hn::Min(hn::IfThenElseZero(hn::Gt(scaled, hn::Zero(d)), scaled), last);
-              hn::Store(hn::ConvertTo(di, cell), di, cellOf + (vectorEnd - k));
-            }
-          }
-          for (std::size_t q = k; q < chunkEnd; ++q) {
-            const double s = a.s[q];
-            std::size_t j;
-            if (q < vectorEnd) {
-              const auto cell = static_cast<std::size_t>(cellOf[q - k]);
-              j = tb.cellFirst[cell] + (tb.cellFirstEnd[cell] < s);
-            } else {
-              j = tableInterval(tb, s);
-            }
-            interval[q - k] = j, inverse[q - k] = tb.inverseWidths[j];
-            local[q - k] = (s - tb.starts[j]) * tb.inverseWidths[j];
-          }
-        }
-        const double *c[4];
-        V t[4], w[4];
-        for (std::size_t q = 0; q < 4; ++q) {
-          const std::size_t at = k - chunkStart + q;
-          c[q] = tb.coefficients + interval[at] * 6 * row;
-          t[q] = hn::Set(d, local[at]), w[q] = hn::Set(d, inverse[at]);
-        }
-        for (std::size_t x = 0; x < dims; x += 4) {
-          V value[4], slope[4];
-          for (int q = 0; q < 4; ++q) tablePolynomial<Slopes>(d, c[q] + x, row, t[q], w[q], value[q], slope[q]);
-          transposeStore(value, a.values, x);
-          if constexpr (Slopes) transposeStore(slope, a.slopes, x);
-        }
-      }
+      if (dims == 9 && row == 12) k = evaluateTableFours<Slopes, 9>(d, count, a);
+      else if (dims == 6 && row == 8) k = evaluateTableFours<Slopes, 6>(d, count, a);
+      else k = evaluateTableFours<Slopes, 0>(d, count, a);
     }
   }
 #endif

@@ -19,16 +19,18 @@ inline namespace v1 {
 
 namespace {
 
-/// Per-thread structure-of-arrays scratch of `count` doubles per array.
+/// Per-thread structure-of-arrays scratch of `count` doubles per array, each
+/// array on a cache line (the kernels' vector loads and stores then never
+/// straddle two).
 struct Scratch {
-  std::vector<double> data;
-  std::size_t count = 0, used = 0;
+  kernels::AlignedVector<double> data;
+  std::size_t stride = 0, used = 0;
   void reset(std::size_t samples, std::size_t arrays) {
-    count = samples, used = 0;
-    if (data.size() < samples * arrays) data.resize(samples * arrays);
+    stride = (samples + 7) / 8 * 8, used = 0;
+    if (data.size() < stride * arrays) data.resize(stride * arrays);
   }
   double *take() {
-    double *p = data.data() + used * count;
+    double *p = data.data() + used * stride;
     ++used;
     return p;
   }
