@@ -284,20 +284,27 @@ TEST(Kernels, GregoryPositionsAgreeAcrossWidthsAndWithTheFormula) {
 TEST(Kernels, TableEvaluationAgreesAcrossWidthsAndWithHorner) {
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(-2, 2), unit(0, 1);
-  // 6 and 9: the engine's tables (kernels specialized for them); 3 and 5:
-  // the general path with a partial last group of four coordinates.
-  for (int dims : {3, 5, 6, 9}) {
-    const int padded = (dims + 3) / 4 * 4;
+  // {coordinates, row width}: 6 in rows of 8 and 9 as rows of 8 and a tail
+  // of one, the engine's tables (kernels specialized for them); the others
+  // through the general path: partial rows, tails of one to three, tail only.
+  const std::pair<int, int> layouts[] = {{6, 8}, {9, 8}, {3, 4}, {5, 8}, {5, 4}, {9, 12}, {7, 4}, {1, 0}};
+  for (const auto &[dims, padded] : layouts) {
+    const int rowDims = std::min(dims, padded);
+    const size_t block = 6 * padded + 8 * (dims - rowDims);
+    // Coefficient of t^r, coordinate d, interval j (kernels::PolynomialTable).
+    auto at = [&](size_t j, int r, int d) {
+      return j * block + (d < rowDims ? r * padded + d : 6 * padded + 8 * (d - rowDims) + r);
+    };
     // Uneven intervals over [0, 1], a coarse grid: the forward search moves.
     std::vector<double> edges{0};
     while (edges.back() < 1) edges.push_back(std::min(1.0, edges.back() + 0.002 + 0.05 * unit(rng)));
     const size_t m = edges.size() - 1;
     std::vector<double> starts(edges.begin(), edges.end() - 1), ends(edges.begin() + 1, edges.end()), inverse(m);
     for (size_t j = 0; j < m; ++j) inverse[j] = 1 / (ends[j] - starts[j]);
-    std::vector<double> coefficients(m * 6 * padded, 0.0);
+    std::vector<double> coefficients(m * block, 0.0);
     for (size_t j = 0; j < m; ++j)
       for (int r = 0; r < 6; ++r)
-        for (int d = 0; d < dims; ++d) coefficients[(j * 6 + r) * padded + d] = u(rng);
+        for (int d = 0; d < dims; ++d) coefficients[at(j, r, d)] = u(rng);
     // A coarse grid (several forward steps) and a fine one (at most one:
     // the cells carry their first interval's end).
     for (const size_t cells : {size_t{64}, size_t{2048}}) {
@@ -328,8 +335,8 @@ TEST(Kernels, TableEvaluationAgreesAcrossWidthsAndWithHorner) {
         const double t = (s[k] - starts[j]) * inverse[j];
         for (int d = 0; d < dims; ++d) {
           double v = 0, dv = 0;
-          for (int r = 5; r >= 0; --r) v = v * t + coefficients[(j * 6 + r) * padded + d];
-          for (int r = 1; r <= 5; ++r) dv += r * coefficients[(j * 6 + r) * padded + d] * std::pow(t, r - 1);
+          for (int r = 5; r >= 0; --r) v = v * t + coefficients[at(j, r, d)];
+          for (int r = 1; r <= 5; ++r) dv += r * coefficients[at(j, r, d)] * std::pow(t, r - 1);
           horner[d * kCount + k] = v, hornerSlope[d * kCount + k] = dv * inverse[j];
         }
       }
@@ -338,13 +345,13 @@ TEST(Kernels, TableEvaluationAgreesAcrossWidthsAndWithHorner) {
         std::vector<double *> v(dims), sl(dims);
         for (int d = 0; d < dims; ++d) v[d] = values[d], sl[d] = slopes[d];
         ck::evaluateTable(kCount, table, s.data(), v.data(), sl.data(), w.id);
-        EXPECT_LE(relativeDifference(values.data, horner), 1e-12) << w.name << " dims " << dims << " cells " << cells;
-        EXPECT_LE(relativeDifference(slopes.data, hornerSlope), 1e-12) << w.name << " dims " << dims << " cells " << cells;
+        EXPECT_LE(relativeDifference(values.data, horner), 1e-12) << w.name << " dims " << dims << " in rows of " << padded << ", cells " << cells;
+        EXPECT_LE(relativeDifference(slopes.data, hornerSlope), 1e-12) << w.name << " dims " << dims << " in rows of " << padded << ", cells " << cells;
         // Values alone (the position path): the same values.
         Soa alone(dims, kCount);
         for (int d = 0; d < dims; ++d) v[d] = alone[d];
         ck::evaluateTable(kCount, table, s.data(), v.data(), nullptr, w.id);
-        EXPECT_EQ(alone.data, values.data) << w.name << " dims " << dims << " cells " << cells << " (values alone)";
+        EXPECT_EQ(alone.data, values.data) << w.name << " dims " << dims << " in rows of " << padded << ", cells " << cells << " (values alone)";
       }
     }
   }

@@ -132,33 +132,66 @@ HWY_INLINE void tableLookups(D d, const ck::PolynomialTable &tb, const double *s
 }
 
 #if HWY_TARGET != HWY_SCALAR
-/// Four samples' four-coordinate vectors r[q] stored as the coordinates'
-/// four-sample vectors out[x + c][k .. k + 4), c < `used`.
-template <std::size_t kUsed, class D, class V = hn::Vec<D>>
-HWY_INLINE void transposeStore(D d, const V (&r)[4], double *const *out, std::size_t x, std::size_t k) {
+/// The 4 × 4 transpose: r[q][c] → column c = (r[0][c], …, r[3][c]), for
+/// the first kUsed columns.
+template <std::size_t kUsed = 4, class D, class V = hn::Vec<D>>
+HWY_INLINE void transpose4(D d, const V (&r)[4], V (&column)[4]) {
   const V t0 = hn::InterleaveLower(d, r[0], r[1]), t1 = hn::InterleaveUpper(d, r[0], r[1]);
   const V t2 = hn::InterleaveLower(d, r[2], r[3]), t3 = hn::InterleaveUpper(d, r[2], r[3]);
-  hn::StoreU(hn::ConcatLowerLower(d, t2, t0), d, out[x] + k);
-  if constexpr (kUsed > 1) hn::StoreU(hn::ConcatLowerLower(d, t3, t1), d, out[x + 1] + k);
-  if constexpr (kUsed > 2) hn::StoreU(hn::ConcatUpperUpper(d, t2, t0), d, out[x + 2] + k);
-  if constexpr (kUsed > 3) hn::StoreU(hn::ConcatUpperUpper(d, t3, t1), d, out[x + 3] + k);
+  column[0] = hn::ConcatLowerLower(d, t2, t0);
+  if constexpr (kUsed > 1) column[1] = hn::ConcatLowerLower(d, t3, t1);
+  if constexpr (kUsed > 2) column[2] = hn::ConcatUpperUpper(d, t2, t0);
+  if constexpr (kUsed > 3) column[3] = hn::ConcatUpperUpper(d, t3, t1);
 }
 
-/// RibbonTable evaluation of four samples at a time for a table of kDims
-/// coordinates, over D with four lanes that run across the coordinates;
-/// the four samples are transposed in registers so that the
-/// structure-of-arrays outputs are written as whole vectors. kDims known at
-/// compile time (the engine's tables: 6 for G¹ ribbons P, T, 9 for G² P, T,
-/// C) unrolls every loop and keeps the output pointers in registers; the
-/// general kDims = 0 reads tb.dims. Returns the samples done (a multiple of
-/// four); the rest is the caller's.
-template <bool Slopes, std::size_t kDims, class D>
+/// Four samples' four-coordinate vectors r[q] stored as the coordinates'
+/// four-sample vectors out[x + c][k .. k + 4), c < kUsed.
+template <std::size_t kUsed, class D, class V = hn::Vec<D>>
+HWY_INLINE void transposeStore(D d, const V (&r)[4], double *const *out, std::size_t x, std::size_t k) {
+  V column[4];
+  transpose4<kUsed>(d, r, column);
+  for (std::size_t c = 0; c < kUsed; ++c) hn::StoreU(column[c], d, out[x + c] + k);
+}
+
+/// One tail coordinate (see PolynomialTable) of four samples, its lanes
+/// across the samples: each sample's eight doubles at c[q] (t⁰ … t⁵, two
+/// zeros) transposed into the six coefficients' four-sample vectors, then
+/// one polynomial for the four samples at their local parameters t.
+template <bool Slopes, class D, class V = hn::Vec<D>>
+HWY_INLINE void tailPolynomial(D d, const double *const (&c)[4], V t, V inverseWidth, V &value, V &slope) {
+  const V low[4] = {hn::LoadU(d, c[0]), hn::LoadU(d, c[1]), hn::LoadU(d, c[2]), hn::LoadU(d, c[3])};
+  const V high[4] = {hn::LoadU(d, c[0] + 4), hn::LoadU(d, c[1] + 4), hn::LoadU(d, c[2] + 4), hn::LoadU(d, c[3] + 4)};
+  V k[4], k45[4];
+  transpose4(d, low, k);
+  transpose4<2>(d, high, k45);
+  value = hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(k45[1], t, k45[0]), t, k[3]), t, k[2]), t, k[1]), t, k[0]);
+  if constexpr (Slopes) {
+    const V dv = hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::Mul(hn::Set(d, 5.0), k45[1]), t, hn::Mul(hn::Set(d, 4.0), k45[0])),
+                                                  t, hn::Mul(hn::Set(d, 3.0), k[3])),
+                                       t, hn::Add(k[2], k[2])),
+                            t, k[1]);
+    slope = hn::Mul(dv, inverseWidth);
+  }
+}
+
+/// RibbonTable evaluation of four samples at a time over D with four lanes:
+/// the row coordinates with the lanes across the coordinates, the four
+/// samples transposed in registers so that the structure-of-arrays outputs
+/// are written as whole vectors; the tail coordinates with the lanes across
+/// the samples. The layout known at compile time (kRow > 0: the engine's
+/// tables, 6 row coordinates in rows of 8 for G¹ ribbons P, T; 8 and a tail
+/// of 1 for G² P, T, C) unrolls every loop and keeps the output pointers in
+/// registers; kRow = 0 reads it from the table. Returns the samples done (a
+/// multiple of four); the rest is the caller's.
+template <bool Slopes, std::size_t kRowDims, std::size_t kRow, std::size_t kTail, class D>
 HWY_INLINE std::size_t evaluateTableFours(D d, std::size_t count, const TableArgs &a) {
   using V = hn::Vec<D>;
   const ck::PolynomialTable &tb = *a.table;
-  const std::size_t dims = kDims ? kDims : static_cast<std::size_t>(tb.dims);
-  const std::size_t row = kDims ? (kDims + 3) / 4 * 4 : static_cast<std::size_t>(tb.paddedDims);
-  constexpr std::size_t kOut = kDims ? kDims : 16; // the width-1 path's limit too
+  const std::size_t rowDims = kRow ? kRowDims : static_cast<std::size_t>(tb.rowDims());
+  const std::size_t row = kRow ? kRow : static_cast<std::size_t>(tb.paddedDims);
+  const std::size_t tail = kRow ? kTail : static_cast<std::size_t>(tb.tailDims());
+  const std::size_t dims = rowDims + tail, block = 6 * row + 8 * tail;
+  constexpr std::size_t kOut = kRow ? kRowDims + kTail : 16; // the width-1 path's limit too
   double *values[kOut], *slopes[kOut];
   for (std::size_t x = 0; x < dims; ++x) values[x] = a.values[x], slopes[x] = Slopes ? a.slopes[x] : nullptr;
   constexpr std::size_t kChunk = 64;
@@ -172,7 +205,7 @@ HWY_INLINE std::size_t evaluateTableFours(D d, std::size_t count, const TableArg
       const double *c[4];
       V t[4], w[4];
       for (std::size_t q = 0; q < 4; ++q) {
-        c[q] = tb.coefficients + interval[k - chunkStart + q] * 6 * row;
+        c[q] = tb.coefficients + interval[k - chunkStart + q] * block;
         t[q] = hn::Set(d, local[k - chunkStart + q]), w[q] = hn::Set(d, inverse[k - chunkStart + q]);
       }
       auto chunk = [&](std::size_t x, auto used) {
@@ -181,18 +214,29 @@ HWY_INLINE std::size_t evaluateTableFours(D d, std::size_t count, const TableArg
         transposeStore<decltype(used)::value>(d, value, values, x, k);
         if constexpr (Slopes) transposeStore<decltype(used)::value>(d, slope, slopes, x, k);
       };
-      if constexpr (kDims > 0) {
+      if constexpr (kRow > 0) {
         [&]<std::size_t... X>(std::index_sequence<X...>) {
-          (chunk(4 * X, std::integral_constant<std::size_t, std::min<std::size_t>(4, kDims - 4 * X)>()), ...);
-        }(std::make_index_sequence<(kDims + 3) / 4>());
+          (chunk(4 * X, std::integral_constant<std::size_t, std::min<std::size_t>(4, kRowDims - 4 * X)>()), ...);
+        }(std::make_index_sequence<(kRowDims + 3) / 4>());
       } else {
-        for (std::size_t x = 0; x < dims; x += 4) {
-          switch (dims - x) {
+        for (std::size_t x = 0; x < rowDims; x += 4) {
+          switch (rowDims - x) {
           case 1: chunk(x, std::integral_constant<std::size_t, 1>()); break;
           case 2: chunk(x, std::integral_constant<std::size_t, 2>()); break;
           case 3: chunk(x, std::integral_constant<std::size_t, 3>()); break;
           default: chunk(x, std::integral_constant<std::size_t, 4>()); break;
           }
+        }
+      }
+      if (tail) {
+        const V ts = hn::Load(d, local + (k - chunkStart)), ws = hn::Load(d, inverse + (k - chunkStart));
+        for (std::size_t e = 0; e < tail; ++e) {
+          const std::size_t offset = 6 * row + 8 * e;
+          const double *const at[4] = {c[0] + offset, c[1] + offset, c[2] + offset, c[3] + offset};
+          V value, slope;
+          tailPolynomial<Slopes>(d, at, ts, ws, value, slope);
+          hn::StoreU(value, d, values[rowDims + e] + k);
+          if constexpr (Slopes) hn::StoreU(slope, d, slopes[rowDims + e] + k);
         }
       }
     }
@@ -204,38 +248,48 @@ HWY_INLINE std::size_t evaluateTableFours(D d, std::size_t count, const TableArg
 #endif
 
 /// RibbonTable evaluation over D, a tag whose lanes run across the
-/// coordinates of one sample (rows are padded to a multiple of 4): four
-/// samples at a time when D has four lanes (evaluateTableFours), the rest
-/// one at a time.
+/// coordinates of one sample: four samples at a time when D has four lanes
+/// (evaluateTableFours), the rest one at a time (the row coordinates a
+/// vector at a time, the tail ones alone).
 template <bool Slopes, class D> HWY_INLINE void evaluateTableWith(D d, std::size_t count, const TableArgs &a) {
   using V = hn::Vec<D>;
   const ck::PolynomialTable &tb = *a.table;
-  const std::size_t lanes = hn::Lanes(d), dims = static_cast<std::size_t>(tb.dims);
-  const std::size_t row = static_cast<std::size_t>(tb.paddedDims);
+  const std::size_t lanes = hn::Lanes(d), rowDims = static_cast<std::size_t>(tb.rowDims());
+  const std::size_t row = static_cast<std::size_t>(tb.paddedDims), tail = static_cast<std::size_t>(tb.tailDims());
+  const std::size_t block = tb.blockSize();
   std::size_t k = 0;
 #if HWY_TARGET != HWY_SCALAR
   if constexpr (hn::MaxLanes(D()) == 4) {
     if (lanes == 4) {
-      if (dims == 9 && row == 12) k = evaluateTableFours<Slopes, 9>(d, count, a);
-      else if (dims == 6 && row == 8) k = evaluateTableFours<Slopes, 6>(d, count, a);
-      else k = evaluateTableFours<Slopes, 0>(d, count, a);
+      if (rowDims == 8 && row == 8 && tail == 1) k = evaluateTableFours<Slopes, 8, 8, 1>(d, count, a);
+      else if (rowDims == 6 && row == 8 && tail == 0) k = evaluateTableFours<Slopes, 6, 8, 0>(d, count, a);
+      else k = evaluateTableFours<Slopes, 0, 0, 0>(d, count, a);
     }
   }
 #endif
+  const hn::CappedTag<double, 1> one;
   HWY_ALIGN double value[16], slope[16];
   for (; k < count; ++k) {
     const double s = a.s[k];
     const std::size_t j = tableInterval(tb, s);
+    const double *c = tb.coefficients + j * block;
     const V t = hn::Set(d, (s - tb.starts[j]) * tb.inverseWidths[j]), w = hn::Set(d, tb.inverseWidths[j]);
-    for (std::size_t x = 0; x < dims; x += lanes) {
+    for (std::size_t x = 0; x < rowDims; x += lanes) {
       V v, sl;
-      tablePolynomial<Slopes>(d, tb.coefficients + j * 6 * row + x, row, t, w, v, sl);
+      tablePolynomial<Slopes>(d, c + x, row, t, w, v, sl);
       hn::Store(v, d, value + x);
       if constexpr (Slopes) hn::Store(sl, d, slope + x);
     }
-    for (std::size_t x = 0; x < dims; ++x) a.values[x][k] = value[x];
+    for (std::size_t e = 0; e < tail; ++e) {
+      hn::Vec<decltype(one)> v, sl;
+      tablePolynomial<Slopes>(one, c + 6 * row + 8 * e, 1, hn::Set(one, hn::GetLane(t)), hn::Set(one, hn::GetLane(w)), v,
+                              sl);
+      value[rowDims + e] = hn::GetLane(v);
+      if constexpr (Slopes) slope[rowDims + e] = hn::GetLane(sl);
+    }
+    for (std::size_t x = 0; x < rowDims + tail; ++x) a.values[x][k] = value[x];
     if constexpr (Slopes)
-      for (std::size_t x = 0; x < dims; ++x) a.slopes[x][k] = slope[x];
+      for (std::size_t x = 0; x < rowDims + tail; ++x) a.slopes[x][k] = slope[x];
   }
 }
 

@@ -46,7 +46,9 @@ inline void polynomial(const double *c, int stride, int dims, double t, double *
 } // namespace
 
 RibbonTable::RibbonTable(int dims, std::vector<double> breaks, const Exact &exact)
-    : dims_(dims), paddedDims_((dims + 3) / 4 * 4) {
+    // Rows of a multiple of 4 (kernels::PolynomialTable), a lone last
+    // coordinate as a tail: nine (G² P, T, C) are rows of 8 and one tail.
+    : dims_(dims), paddedDims_(dims % 4 == 1 ? dims - 1 : (dims + 3) / 4 * 4) {
   CURVENET_CHECK(dims >= 1 && dims <= kMaxDims, "ribbon table: " + std::to_string(dims) + " coordinates");
   std::sort(breaks.begin(), breaks.end());
   std::vector<double> edges{0.0};
@@ -134,10 +136,15 @@ RibbonTable::RibbonTable(int dims, std::vector<double> breaks, const Exact &exac
     starts_.push_back(x.a);
     ends_.push_back(x.b);
     inverseWidths_.push_back(1 / (x.b - x.a));
+    const int rowDims = std::min(dims_, paddedDims_);
     for (int row = 0; row < 6; ++row) {
       const auto from = x.coefficients.begin() + row * dims_;
-      coefficients_.insert(coefficients_.end(), from, from + dims_);
-      coefficients_.insert(coefficients_.end(), static_cast<std::size_t>(paddedDims_ - dims_), 0.0);
+      coefficients_.insert(coefficients_.end(), from, from + rowDims);
+      coefficients_.insert(coefficients_.end(), static_cast<std::size_t>(paddedDims_ - rowDims), 0.0);
+    }
+    for (int d = rowDims; d < dims_; ++d) {
+      for (int row = 0; row < 6; ++row) coefficients_.push_back(x.coefficients[row * dims_ + d]);
+      coefficients_.insert(coefficients_.end(), 2, 0.0);
     }
   }
   // Lookup grid: cell c holds the first interval reaching c / cells. Cells
@@ -174,8 +181,12 @@ RibbonTable::RibbonTable(int dims, std::vector<double> breaks, const Exact &exac
 void RibbonTable::evaluate(double s, double *values, double *slopes) const {
   const std::uint32_t i = interval(s);
   const double t = (s - starts_[i]) * inverseWidths_[i];
-  polynomial(coefficients_.data() + static_cast<std::size_t>(i) * 6 * paddedDims_, paddedDims_, dims_, t, values,
-             slopes);
+  const kernels::PolynomialTable layout = view();
+  const int rowDims = layout.rowDims();
+  const double *c = coefficients_.data() + i * layout.blockSize();
+  polynomial(c, paddedDims_, rowDims, t, values, slopes);
+  for (int d = rowDims; d < dims_; ++d)
+    polynomial(c + 6 * paddedDims_ + 8 * (d - rowDims), 1, 1, t, values + d, slopes ? slopes + d : nullptr);
   if (slopes)
     for (int d = 0; d < dims_; ++d) slopes[d] *= inverseWidths_[i];
 }

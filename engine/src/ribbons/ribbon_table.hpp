@@ -72,8 +72,9 @@ private:
 
   int dims_ = 0, paddedDims_ = 0;
   std::vector<double> starts_, ends_, inverseWidths_;
-  /// Per interval: 6 rows of paddedDims_ (t⁰ … t⁵ in local t ∈ [0, 1]); on
-  /// a cache line, so that the kernel's four-double loads never straddle two.
+  /// Per interval: 6 rows of paddedDims_ (t⁰ … t⁵ in local t ∈ [0, 1]),
+  /// then the tail coordinates (kernels::PolynomialTable); on a cache line,
+  /// so that the kernel's four-double loads never straddle two.
   kernels::AlignedVector<double> coefficients_;
   std::vector<std::uint32_t> cellFirst_;
   std::vector<double> cellFirstEnd_; ///< when steps_ ≤ 1: see kernels::PolynomialTable

@@ -65,15 +65,24 @@ struct DualVec3Span {
 };
 /// A piecewise degree-5 polynomial in one parameter s ∈ [0, 1] with `dims`
 /// coordinates (RibbonTable's storage): interval j covers (starts[j],
-/// ends[j]] (the first also s = 0) and holds 6 rows of `paddedDims`
-/// doubles, the coefficients of t⁰ … t⁵ in t = (s − starts[j]) ·
-/// inverseWidths[j]; rows are padded with zeros to a multiple of 4.
+/// ends[j]] (the first also s = 0); its coefficients of t⁰ … t⁵ in
+/// t = (s − starts[j]) · inverseWidths[j] are a block of blockSize()
+/// doubles at coefficients + j · blockSize(): 6 rows of `paddedDims`
+/// doubles (a multiple of 4) holding the first min(dims, paddedDims)
+/// coordinates, padded with zeros; then each remaining coordinate (the
+/// tail) as 8 doubles, t⁰ … t⁵ and two zeros. (A lone coordinate past a
+/// multiple of 4 is cheaper as a tail than as a row of four mostly zero
+/// lanes: the kernel evaluates tails four samples at a time.)
 /// cellFirst[c] is the first interval reaching c / cells; at most `steps`
 /// moves forward from it reach any s of the cell. Optional, for steps ≤ 1:
 /// cellFirstEnd[c], the end of interval cellFirst[c] (+∞ for the last), so
 /// that the lookup reads one cell rather than a cell and then an interval.
 struct PolynomialTable {
   int dims = 0, paddedDims = 0, steps = 0;
+  /// Coordinates in the rows, and in the tail.
+  int rowDims() const { return dims < paddedDims ? dims : paddedDims; }
+  int tailDims() const { return dims - rowDims(); }
+  std::size_t blockSize() const { return static_cast<std::size_t>(6 * paddedDims + 8 * tailDims()); }
   std::size_t intervals = 0, cells = 0;
   const double *starts = nullptr, *ends = nullptr, *inverseWidths = nullptr, *coefficients = nullptr;
   const std::uint32_t *cellFirst = nullptr;
