@@ -96,38 +96,47 @@ HWY_INLINE void tablePolynomial(D d, const double *c, std::size_t row, V t, V in
 }
 
 /// The intervals of s[k .. end) into interval, local (the local parameter)
-/// and inverse (the interval's 1 / width), `end − k` ≤ 64. Apart from the
-/// polynomials, the lookups' chains of dependent loads overlap with one
-/// another instead of stalling the polynomial work behind each sample's
-/// lookup. With cellFirstEnd, the cells four at a time (tableInterval's
-/// clamping: NaN and s ≤ 0 to the first cell, s ≥ 1 to the last), then one
-/// read per cell; else through tableInterval.
-template <class D>
-HWY_INLINE void tableLookups(D d, const ck::PolynomialTable &tb, const double *s, std::size_t k, std::size_t end,
-                             std::size_t *interval, double *local, double *inverse) {
+/// and, when Inverse, inverse (the interval's 1 / width), `end − k` ≤ 64.
+/// Apart from the polynomials, the lookups' chains of dependent loads
+/// overlap with one another instead of stalling the polynomial work behind
+/// each sample's lookup; out of line, with the table's arrays in locals, the
+/// loop keeps everything in registers. With cellFirstEnd, the cells four at
+/// a time (tableInterval's clamping: NaN and s ≤ 0 to the first cell, s ≥ 1
+/// to the last), then one read per cell; else through tableInterval.
+template <bool Inverse, class D>
+HWY_NOINLINE void tableLookups(D d, const ck::PolynomialTable &tb, const double *HWY_RESTRICT s, std::size_t k,
+                               std::size_t end, std::size_t *HWY_RESTRICT interval, double *HWY_RESTRICT local,
+                               double *HWY_RESTRICT inverse) {
   using V = hn::Vec<D>;
-  HWY_ALIGN std::int64_t cellOf[64];
-  std::size_t vectorEnd = k;
+  const double *HWY_RESTRICT starts = tb.starts, *HWY_RESTRICT inverseWidths = tb.inverseWidths;
+  std::size_t q = k;
   if (tb.cellFirstEnd) {
+    const std::uint32_t *HWY_RESTRICT first = tb.cellFirst;
+    const double *HWY_RESTRICT firstEnd = tb.cellFirstEnd;
+    HWY_ALIGN std::int64_t cellOf[64];
     const hn::RebindToSigned<D> di;
     const V scale = hn::Set(d, static_cast<double>(tb.cells)), last = hn::Set(d, static_cast<double>(tb.cells - 1));
+    std::size_t vectorEnd = k;
     for (; vectorEnd + 4 <= end; vectorEnd += 4) {
       const V scaled = hn::Mul(hn::LoadU(d, s + vectorEnd), scale);
       const V cell = hn::Min(hn::IfThenElseZero(hn::Gt(scaled, hn::Zero(d)), scaled), last);
       hn::Store(hn::ConvertTo(di, cell), di, cellOf + (vectorEnd - k));
     }
-  }
-  for (std::size_t q = k; q < end; ++q) {
-    const double x = s[q];
-    std::size_t j;
-    if (q < vectorEnd) {
+    for (; q < vectorEnd; ++q) {
+      const double x = s[q];
       const auto cell = static_cast<std::size_t>(cellOf[q - k]);
-      j = tb.cellFirst[cell] + (tb.cellFirstEnd[cell] < x);
-    } else {
-      j = tableInterval(tb, x);
+      const std::size_t j = first[cell] + (firstEnd[cell] < x);
+      const double w = inverseWidths[j];
+      interval[q - k] = j, local[q - k] = (x - starts[j]) * w;
+      if constexpr (Inverse) inverse[q - k] = w;
     }
-    interval[q - k] = j, inverse[q - k] = tb.inverseWidths[j];
-    local[q - k] = (x - tb.starts[j]) * tb.inverseWidths[j];
+  }
+  for (; q < end; ++q) {
+    const double x = s[q];
+    const std::size_t j = tableInterval(tb, x);
+    const double w = inverseWidths[j];
+    interval[q - k] = j, local[q - k] = (x - starts[j]) * w;
+    if constexpr (Inverse) inverse[q - k] = w;
   }
 }
 
@@ -200,13 +209,14 @@ HWY_INLINE std::size_t evaluateTableFours(D d, std::size_t count, const TableArg
   std::size_t k = 0;
   for (std::size_t chunkStart = 0; chunkStart + 4 <= count; chunkStart += kChunk) {
     const std::size_t chunkEnd = std::min(count, chunkStart + kChunk);
-    tableLookups(d, tb, a.s, chunkStart, chunkEnd, interval, local, inverse);
+    tableLookups<Slopes>(d, tb, a.s, chunkStart, chunkEnd, interval, local, inverse);
     for (k = chunkStart; k + 4 <= chunkEnd; k += 4) {
       const double *c[4];
       V t[4], w[4];
       for (std::size_t q = 0; q < 4; ++q) {
         c[q] = tb.coefficients + interval[k - chunkStart + q] * block;
-        t[q] = hn::Set(d, local[k - chunkStart + q]), w[q] = hn::Set(d, inverse[k - chunkStart + q]);
+        t[q] = hn::Set(d, local[k - chunkStart + q]);
+        w[q] = Slopes ? hn::Set(d, inverse[k - chunkStart + q]) : hn::Zero(d); // inverse: only with slopes
       }
       auto chunk = [&](std::size_t x, auto used) {
         V value[4], slope[4];
@@ -229,7 +239,8 @@ HWY_INLINE std::size_t evaluateTableFours(D d, std::size_t count, const TableArg
         }
       }
       if (tail) {
-        const V ts = hn::Load(d, local + (k - chunkStart)), ws = hn::Load(d, inverse + (k - chunkStart));
+        const V ts = hn::Load(d, local + (k - chunkStart));
+        const V ws = Slopes ? hn::Load(d, inverse + (k - chunkStart)) : hn::Zero(d);
         for (std::size_t e = 0; e < tail; ++e) {
           const std::size_t offset = 6 * row + 8 * e;
           const double *const at[4] = {c[0] + offset, c[1] + offset, c[2] + offset, c[3] + offset};
