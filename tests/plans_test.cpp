@@ -145,6 +145,37 @@ TEST(EvaluationPlan, RangesCoverEverySampleOnceAndBatchedSidesMatchTheRotation) 
     }
 }
 
+TEST(EvaluationPlan, RotationRunsReadEverySideFromSideZero) {
+  // Within a rotation run every side's samples are consecutive samples of
+  // side 0's (the position path reads side 0's arrays there), and a run ends
+  // where the next sample leaves that: the plan stores one side's values.
+  for (int n = 3; n <= 8; ++n)
+    for (const SurfaceOptions &o : schemes()) {
+      if (o.scheme == Scheme::CompositeRibbon) continue;
+      for (int r : {1, 2, 3, 11}) {
+        const EvaluationPlan plan(planKey(o, n, r));
+        for (std::size_t k = 0; k < plan.size(); ++k) {
+          const std::size_t run = plan.rotationRun(k);
+          ASSERT_GE(run, 1u);
+          ASSERT_LE(k + run, plan.size());
+          for (int i = 0; i < n; ++i) {
+            const double *side = plan.sideValuesFrom(i, k), *blend = plan.blendValuesFrom(i, k);
+            for (std::size_t m = 0; m < run; ++m) {
+              ASSERT_EQ(plan.rotated(i, k + m), plan.rotated(i, k) + m) << label(o) << " n=" << n << " r=" << r;
+              ASSERT_EQ(side[m], plan.sideValue(i, k + m)) << label(o) << " n=" << n << " r=" << r << " k=" << k;
+              ASSERT_EQ(blend[m], plan.blendValue(i, k + m)) << label(o) << " n=" << n << " r=" << r << " k=" << k;
+            }
+          }
+          if (k + run < plan.size()) {
+            bool ends = false;
+            for (int i = 1; i < n; ++i) ends = ends || plan.rotated(i, k + run) != plan.rotated(i, k) + run;
+            EXPECT_TRUE(ends) << "n=" << n << " r=" << r << " k=" << k << ": the run could go on";
+          }
+        }
+      }
+    }
+}
+
 TEST(EvaluationPlan, CacheBuildsEachKeyOnceUnderConcurrentLookups) {
   clearEvaluationPlans();
   const PlanKey key{Scheme::GregoryG2, Sweepline::Hermite, 5, 40};

@@ -145,17 +145,29 @@ EvaluationPlan::EvaluationPlan(const PlanKey &key) : key_(key) {
       b_[k] = first / total;
     }
   });
-  // Every side's parameter and blend values, contiguous per side, for the
-  // position-only path (no rotation lookups or copies per evaluation).
+  // Side 0's parameter values (every side's when perSide_) and corner 0's
+  // blend values as plain arrays for the position-only path: side i's over
+  // a rotation run are side 0's over the rotated run (sideValuesFrom).
   if (!cr) {
-    sideValues_.resize(static_cast<std::size_t>(n) * count), blendValues_.resize(static_cast<std::size_t>(n) * count);
-    parallel::parallelFor(0, n, [&](int i) {
-      for (std::size_t k = 0; k < count; ++k) {
-        sideValues_[static_cast<std::size_t>(i) * count + k] = side(i, k).v;
-        blendValues_[static_cast<std::size_t>(i) * count + k] = blend(i, k).v;
-      }
+    const int stored = perSide_ ? n : 1;
+    sideValues_.resize(static_cast<std::size_t>(stored) * count), blendValues_.resize(count);
+    parallel::parallelFor(0, stored, [&](int i) {
+      for (std::size_t k = 0; k < count; ++k) sideValues_[static_cast<std::size_t>(i) * count + k] = sideValue(i, k);
     });
+    for (std::size_t k = 0; k < count; ++k) blendValues_[k] = b_[k].v;
   }
+}
+
+std::size_t EvaluationPlan::rotationRun(std::size_t k) const {
+  // The constructor's layout: the centre; n spokes of r − 1 samples; n
+  // triangle interiors of perTriangle_ samples. A rotation maps each of
+  // these pieces onto one of its kind sample for sample.
+  if (k == 0) return 1;
+  if (k < interiorBase_) {
+    const std::size_t spoke = static_cast<std::size_t>(key_.resolution - 1);
+    return 1 + ((k - 1) / spoke + 1) * spoke - k;
+  }
+  return interiorBase_ + ((k - interiorBase_) / perTriangle_ + 1) * perTriangle_ - k;
 }
 
 void EvaluationPlan::sidesAndBlends(int i, std::size_t first, std::size_t count, double *const s[3],

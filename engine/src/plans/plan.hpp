@@ -56,10 +56,17 @@ public:
   }
   double blendValue(int i, std::size_t k) const { return b_[rotated(i, k)].v; }
   double distanceValue(int i, std::size_t k) const { return d_[rotated(i, k)].v; }
-  /// Gregory schemes: side i's parameter values at every sample, and corner
-  /// i's blend values (sideValue, blendValue stored contiguously).
-  const double *sideValues(int i) const { return sideValues_.data() + static_cast<std::size_t>(i) * size(); }
-  const double *blendValues(int i) const { return blendValues_.data() + static_cast<std::size_t>(i) * size(); }
+  /// The samples from k on that every rotation maps to consecutive samples
+  /// (the rest of k's piece of the layout: the centre, a spoke or a triangle
+  /// interior): rotated(i, k + m) = rotated(i, k) + m for m < rotationRun(k).
+  std::size_t rotationRun(std::size_t k) const;
+  /// Gregory schemes: p with p[m] = sideValue(i, k + m), and q with q[m] =
+  /// blendValue(i, k + m), for m < rotationRun(k). Side 0's values serve all
+  /// sides through the rotation (every side's are stored when perSide()).
+  const double *sideValuesFrom(int i, std::size_t k) const {
+    return perSide_ ? sideValues_.data() + static_cast<std::size_t>(i) * size() + k : sideValues_.data() + rotated(i, k);
+  }
+  const double *blendValuesFrom(int i, std::size_t k) const { return blendValues_.data() + rotated(i, k); }
   /// True when every side's parameters are stored (see the constructor).
   bool perSide() const { return perSide_; }
   /// Gregory: corner i's normalized blend B_{i,i−1}; composite-ribbon: the

@@ -185,9 +185,17 @@ void Patch::evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t fir
     });
     return;
   }
+  // Run by run of the rotation: every side reads side 0's values (and
+  // corner 0's blends) at its rotated run. The tessellator's tiles lie
+  // within runs and come in rotation groups, so a group reads one stretch of
+  // the plan n times from the cache.
   std::array<const double *, kMaxSides> side, blend;
-  for (int i = 0; i < n; ++i) side[i] = plan.sideValues(i) + first, blend[i] = plan.blendValues(i) + first;
-  gregoryPositionsFrom(count, side.data(), blend.data(), out);
+  for (std::size_t k = first; k < first + count;) {
+    const std::size_t m = std::min(plan.rotationRun(k), first + count - k);
+    for (int i = 0; i < n; ++i) side[i] = plan.sideValuesFrom(i, k), blend[i] = plan.blendValuesFrom(i, k);
+    gregoryPositionsFrom(m, side.data(), blend.data(), out.from(k - first));
+    k += m;
+  }
 }
 
 void Patch::gregoryPositionsFrom(std::size_t count, const double *const *sideValues, const double *const *blendValues,
