@@ -91,8 +91,9 @@ struct PolynomialTable {
 
 /// (b) Batched ribbon evaluation: the table at s[0 .. count) into
 /// values[c][k] and, when slopes is not null, d/ds into slopes[c][k]. Each
-/// sample's interval is looked up, then its polynomial evaluated with the
-/// coordinates across the SIMD lanes (the reference: one at a time).
+/// sample's interval is looked up, then its row polynomials evaluated with
+/// the coordinates across the SIMD lanes and its tail ones with four
+/// samples across the lanes (the reference: one at a time).
 void evaluateTable(std::size_t count, const PolynomialTable &table, const double *s, double *const *values,
                    double *const *slopes, std::int64_t width = kBestWidth);
 
