@@ -200,7 +200,7 @@ HWY_INLINE std::size_t evaluateTableFours(D d, std::size_t count, const TableArg
   const std::size_t row = kRow ? kRow : static_cast<std::size_t>(tb.paddedDims);
   const std::size_t tail = kRow ? kTail : static_cast<std::size_t>(tb.tailDims());
   const std::size_t dims = rowDims + tail, block = 6 * row + 8 * tail;
-  constexpr std::size_t kOut = kRow ? kRowDims + kTail : 16; // the width-1 path's limit too
+  constexpr std::size_t kOut = kRow ? kRowDims + kTail : ck::PolynomialTable::kMaxDims;
   double *values[kOut], *slopes[kOut];
   for (std::size_t x = 0; x < dims; ++x) values[x] = a.values[x], slopes[x] = Slopes ? a.slopes[x] : nullptr;
   constexpr std::size_t kChunk = 64;
@@ -279,7 +279,7 @@ template <bool Slopes, class D> HWY_INLINE void evaluateTableWith(D d, std::size
   }
 #endif
   const hn::CappedTag<double, 1> one;
-  HWY_ALIGN double value[16], slope[16];
+  HWY_ALIGN double value[ck::PolynomialTable::kMaxDims], slope[ck::PolynomialTable::kMaxDims];
   for (; k < count; ++k) {
     const double s = a.s[k];
     const std::size_t j = tableInterval(tb, s);

@@ -40,6 +40,7 @@ public:
   RibbonTable(int dims, std::vector<double> breaks, const Exact &exact);
 
   static constexpr int kMaxDims = 9;
+  static_assert(kMaxDims <= kernels::PolynomialTable::kMaxDims, "the table kernel's limit");
   int dims() const { return dims_; }
   std::size_t intervals() const { return starts_.size(); }
   /// Largest differences to the exact functions seen at the check points.

@@ -77,7 +77,9 @@ struct DualVec3Span {
 /// moves forward from it reach any s of the cell. Optional, for steps ≤ 1:
 /// cellFirstEnd[c], the end of interval cellFirst[c] (+∞ for the last), so
 /// that the lookup reads one cell rather than a cell and then an interval.
+/// At most kMaxDims coordinates.
 struct PolynomialTable {
+  static constexpr int kMaxDims = 16;
   int dims = 0, paddedDims = 0, steps = 0;
   /// Coordinates in the rows, and in the tail.
   int rowDims() const { return dims < paddedDims ? dims : paddedDims; }
