@@ -281,6 +281,62 @@ TEST(Kernels, GregoryPositionsAgreeAcrossWidthsAndWithTheFormula) {
     }
 }
 
+TEST(Kernels, SharedG2CornerWeightsGiveTheSamePositions) {
+  // gregoryCornerWeights against the weights' definition (plain divisions in
+  // long double, 0 at the corner itself), across widths; gregoryPositions
+  // given them writes the very numbers it computes without them.
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int n : {3, 5, 8}) {
+    Soa s(n, kCount), blend(n, kCount), P(3 * n, kCount, &rng), T(3 * n, kCount, &rng), C(3 * n, kCount, &rng);
+    for (double &x : s.data) x = unit(rng);
+    for (double &x : blend.data) x = unit(rng);
+    s[1][5] = 0, s[0][5] = 1, s[1][6] = 1e-90, s[0][6] = 1 - 1e-16; // at and next to corner 1
+    ck::GregorySamples in;
+    in.sides = n, in.parabolic = true;
+    for (int i = 0; i < n; ++i) {
+      in.s[i] = s[i], in.blend[i] = blend[i];
+      for (int c = 0; c < 3; ++c) in.P[i][c] = P[3 * i + c], in.T[i][c] = T[3 * i + c], in.C[i][c] = C[3 * i + c];
+    }
+    std::vector<ck::GregoryCorner> corners(n);
+    std::uniform_real_distribution<double> u(-2, 2);
+    for (auto &corner : corners)
+      for (auto &v : corner.v)
+        for (double &x : v) x = u(rng);
+    for (const auto &w : ck::availableWidths()) {
+      Soa weights(8 * n, kCount);
+      for (int i = 0; i < n; ++i) {
+        double *into[8];
+        for (int j = 0; j < 8; ++j) into[j] = weights[8 * i + j];
+        ck::gregoryCornerWeights(kCount, s[i], s[(i + n - 1) % n], into, w.id);
+        for (size_t k = 0; k < kCount; ++k) {
+          const long double si = s[i][k], ti = 1 - static_cast<long double>(s[(i + n - 1) % n][k]);
+          int j = 0;
+          for (int p = 0; p <= 2; ++p)
+            for (int q = 0; q <= 2; ++q) {
+              if (!p && !q) continue;
+              const long double den = std::pow(si, 3 - p) + std::pow(ti, 3 - q);
+              const long double expected = den == 0 ? 0 : si * si * si * std::pow(ti, q) / den;
+              ASSERT_NEAR(into[j][k], static_cast<double>(expected), 1e-14 * (1 + std::abs(static_cast<double>(expected))))
+                  << w.name << " n=" << n << " corner " << i << " weight " << j << " sample " << k;
+              ++j;
+            }
+        }
+        in.weights[i] = weights[8 * i];
+      }
+      in.weightStride = kCount;
+      Soa shared(3, kCount), computed(3, kCount);
+      double *o[3] = {shared[0], shared[1], shared[2]}, *c[3] = {computed[0], computed[1], computed[2]};
+      ck::gregoryPositions(kCount, in, corners.data(), o, w.id);
+      for (int i = 0; i < n; ++i) in.weights[i] = nullptr;
+      ck::gregoryPositions(kCount, in, corners.data(), c, w.id);
+      std::size_t mismatches = 0;
+      for (size_t k = 0; k < 3 * kCount; ++k) mismatches += shared.data[k] != computed.data[k];
+      EXPECT_EQ(mismatches, 0u) << w.name << " n=" << n;
+    }
+  }
+}
+
 TEST(Kernels, TableEvaluationAgreesAcrossWidthsAndWithHorner) {
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(-2, 2), unit(0, 1);

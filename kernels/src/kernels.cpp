@@ -47,6 +47,11 @@ struct GregoryJetArgs {
   const ck::GregoryCornerTerms *terms; ///< per corner, G² only
 };
 
+struct CornerWeightArgs {
+  const double *s, *sPrevious;
+  double *const *weights;
+};
+
 struct SweepArgs {
   ck::SweepFrame frame;
   const double *x, *y;
@@ -339,16 +344,18 @@ template <int M, class D, class V> HWY_INLINE void reciprocals(D d, V (&x)[M]) {
 /// quads, all): the same multiplications, but a dependency chain of depth 3
 /// on each side of the division instead of 7, so that the corners of a
 /// sample overlap in the pipeline.
-template <class D, class V> HWY_INLINE void reciprocals(D d, V (&x)[8]) {
+/// With `numerator`: numerator / x for each (the same operations, the
+/// numerator taken into the one division).
+template <class D, class V> HWY_INLINE void reciprocals(D d, V (&x)[8], V numerator) {
   const V pair[4] = {hn::Mul(x[0], x[1]), hn::Mul(x[2], x[3]), hn::Mul(x[4], x[5]), hn::Mul(x[6], x[7])};
   const V quad[2] = {hn::Mul(pair[0], pair[1]), hn::Mul(pair[2], pair[3])};
   const V all = hn::Mul(quad[0], quad[1]);
   if (HWY_UNLIKELY(!hn::AllFalse(d, hn::Not(hn::Gt(all, hn::Set(d, 1e-250)))))) {
-    const V tiny = hn::Set(d, 1e-300), one = hn::Set(d, 1.0);
-    for (V &v : x) v = hn::Div(one, hn::Max(v, tiny));
+    const V tiny = hn::Set(d, 1e-300);
+    for (V &v : x) v = hn::Div(numerator, hn::Max(v, tiny));
     return;
   }
-  const V inverse = hn::Div(hn::Set(d, 1.0), all);
+  const V inverse = hn::Div(numerator, all);
   const V quadInverse[2] = {hn::Mul(inverse, quad[1]), hn::Mul(inverse, quad[0])};
   V pairInverse[4];
   for (int q = 0; q < 2; ++q)
@@ -371,7 +378,27 @@ template <class D, class V> HWY_INLINE void g2CornerWeights(D d, V s, V t, V (&s
   for (int p = 0; p <= 2; ++p)
     for (int r = 0; r <= 2; ++r)
       if (p || r) den[j++] = hn::Add(sp[3 - p], tp[3 - r]);
-  reciprocals(d, den);
+  reciprocals(d, den, one);
+}
+
+/// gregoryCornerWeights' eight weights s³ t^r / (s^{3−p} + t^{3−r}): s³ is
+/// the batch inversion's numerator, so the weights cost what the
+/// reciprocals did.
+template <class D, class V> HWY_INLINE void g2RationalWeights(D d, V s, V t, V (&w)[8]) {
+  const V s2 = hn::Mul(s, s), t2 = hn::Mul(t, t), s3 = hn::Mul(s2, s);
+  const V sp[4] = {hn::Set(d, 1.0), s, s2, s3}, tp[4] = {sp[0], t, t2, hn::Mul(t2, t)};
+  int j = 0;
+  for (int p = 0; p <= 2; ++p)
+    for (int r = 0; r <= 2; ++r)
+      if (p || r) w[j++] = hn::Add(sp[3 - p], tp[3 - r]);
+  reciprocals(d, w, s3);
+  j = 0;
+  for (int p = 0; p <= 2; ++p)
+    for (int r = 0; r <= 2; ++r) {
+      if (!p && !r) continue;
+      if (r) w[j] = hn::Mul(tp[r], w[j]);
+      ++j;
+    }
 }
 
 template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t k, const GregoryArgs &a) {
@@ -406,26 +433,24 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t 
     const double(*vec)[3] = a.corners[i].v;
     V q[3];
     if constexpr (Parabolic) {
-      // Q in the form of GregoryCornerTerms (a00 is in taylor[0][0]).
-      V sp[4], tp[4], den[8];
-      g2CornerWeights(d, s, t, sp, tp, den);
+      // Q in the form of GregoryCornerTerms (a00 is in taylor[0][0]): the
+      // polynomial in Horner form, then the rational terms.
+      V w[8];
+      if (in.weights[i]) {
+        for (int j = 0; j < 8; ++j) w[j] = hn::LoadU(d, in.weights[i] + j * in.weightStride + k);
+      } else {
+        g2RationalWeights(d, s, t, w);
+      }
       const ck::GregoryCornerTerms &terms = a.terms[i];
-      V ratio[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
-      int j = 0;
-      for (int p = 0; p <= 2; ++p)
-        for (int r = 0; r <= 2; ++r) {
-          if (!p && !r) continue;
-          const V g = r ? hn::Mul(tp[r], den[j]) : den[j];
-          for (int c = 0; c < 3; ++c) ratio[c] = hn::MulAdd(g, hn::Set(d, terms.rational[j][c]), ratio[c]);
-          ++j;
-        }
       for (int c = 0; c < 3; ++c) {
         V h[3];
         for (int p = 0; p <= 2; ++p)
           h[p] = hn::MulAdd(t, hn::MulAdd(t, hn::Set(d, terms.taylor[p][2][c]), hn::Set(d, terms.taylor[p][1][c])),
                             hn::Set(d, terms.taylor[p][0][c]));
-        q[c] = hn::MulAdd(sp[3], ratio[c], hn::MulAdd(s, hn::MulAdd(s, h[2], h[1]), h[0]));
+        q[c] = hn::MulAdd(s, hn::MulAdd(s, h[2], h[1]), h[0]);
       }
+      for (int j = 0; j < 8; ++j)
+        for (int c = 0; c < 3; ++c) q[c] = hn::MulAdd(w[j], hn::Set(d, terms.rational[j][c]), q[c]);
     } else {
       // a00 + Σ f (wa a + wb b), wa = x / (x + y), wb = 1 − wa.
       for (int c = 0; c < 3; ++c) q[c] = hn::Set(d, vec[0][c]);
@@ -598,6 +623,21 @@ void GregoryPositions(std::size_t count, const GregoryArgs &args, bool reference
   auto run = [&](auto tag) {
     if (args.in->parabolic) forEachVector(tag, count, [&](auto d, std::size_t k) { gregoryBody<true>(d, k, args); });
     else forEachVector(tag, count, [&](auto d, std::size_t k) { gregoryBody<false>(d, k, args); });
+  };
+  if (reference) run(hn::CappedTag<double, 1>());
+  else run(hn::ScalableTag<double>());
+}
+
+void GregoryCornerWeights(std::size_t count, const CornerWeightArgs &args, bool reference) {
+  auto run = [&](auto tag) {
+    forEachVector(tag, count, [&](auto d, std::size_t k) {
+      using V = hn::Vec<decltype(d)>;
+      // t as gregoryBody takes it, so that the weights are the same numbers.
+      const V s = hn::LoadU(d, args.s + k), t = hn::Sub(hn::Set(d, 1.0), hn::LoadU(d, args.sPrevious + k));
+      V w[8];
+      g2RationalWeights(d, s, t, w);
+      for (int j = 0; j < 8; ++j) hn::StoreU(w[j], d, args.weights[j] + k);
+    });
   };
   if (reference) run(hn::CappedTag<double, 1>());
   else run(hn::ScalableTag<double>());
@@ -893,6 +933,7 @@ HWY_EXPORT(SweepRoots);
 HWY_EXPORT(SweepRootsRobust);
 HWY_EXPORT(GregoryPositions);
 HWY_EXPORT(GregoryJets);
+HWY_EXPORT(GregoryCornerWeights);
 HWY_EXPORT(EvaluateTable);
 HWY_EXPORT(Lanes);
 
@@ -969,6 +1010,13 @@ GregoryCornerTerms gregoryCornerTerms(const GregoryCorner &corner) {
       slot += 2, ++j;
     }
   return q;
+}
+
+void gregoryCornerWeights(std::size_t count, const double *s, const double *sPrevious, double *const weights[8],
+                          std::int64_t width) {
+  bool reference;
+  const std::size_t index = tableIndex(width, reference);
+  HWY_DISPATCH_TABLE(GregoryCornerWeights)[index](count, {s, sPrevious, weights}, reference);
 }
 
 namespace {

@@ -109,6 +109,13 @@ struct GregorySamples {
   bool parabolic = false; ///< G² (parabolic ribbons, nine-term correction) or G¹
   const double *s[kMaxSides] = {}, *blend[kMaxSides] = {};
   const double *P[kMaxSides][3] = {}, *T[kMaxSides][3] = {}, *C[kMaxSides][3] = {};
+  /// G², optional: corner i's rational weights from gregoryCornerWeights,
+  /// weight j of sample k at weights[i][j · weightStride + k]. They depend on
+  /// (s_i, t_i) alone, so samples that a rotation of the domain maps onto
+  /// one another share them: an evaluation plan computes them once for all
+  /// n corners (Patch::evaluatePlannedPositions). Null: computed here.
+  const double *weights[kMaxSides] = {};
+  std::size_t weightStride = 0;
 };
 
 /// The correction patch's constant vectors at corner i (where side i − 1
@@ -134,6 +141,16 @@ struct GregoryCornerTerms {
 
 /// The rearranged form of a G² corner (17 vectors).
 GregoryCornerTerms gregoryCornerTerms(const GregoryCorner &corner);
+
+/// The G² correction patch's eight rational weights at a corner, for
+/// s[0 .. count) and t = 1 − sPrevious[k] (GregorySamples: s_i and
+/// s_{i−1}): weights[j][k] = s³ t^q / (s^{3−p} + t^{3−q}), j counting
+/// (p, q) ≠ (0, 0) row by row, so that Q = Σ s^p t^q taylor[p][q] +
+/// Σ_j weights[j] rational[j] (GregoryCornerTerms); 0 at s = t = 0, the
+/// limit. The eight share one division (batch inversion). gregoryPositions
+/// computes the same numbers in the same operations when not given them.
+void gregoryCornerWeights(std::size_t count, const double *s, const double *sPrevious, double *const weights[8],
+                          std::int64_t width = kBestWidth);
 
 /// (b) Gregory patch positions (paper 000 eqs. 16–18, 22):
 /// out[c][k] = Σ_i B_i (R_{i−1}(s_{i−1}, s_i) + R_i(s_i, t_i) − Q_i(s_i, t_i)),
