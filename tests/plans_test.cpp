@@ -145,6 +145,32 @@ TEST(EvaluationPlan, RangesCoverEverySampleOnceAndBatchedSidesMatchTheRotation) 
     }
 }
 
+TEST(EvaluationPlan, GroupsCoverEverySampleOnceAndRotateMemberOntoMember) {
+  // Side i's data on member m of a group are side 0's on member m − i at
+  // the same offsets: the rotation table says so for every sample.
+  for (int n = 3; n <= 8; ++n)
+    for (int r : {1, 2, 3, 11}) {
+      const EvaluationPlan plan(planKey({Scheme::GregoryG2}, n, r));
+      std::vector<int> covered(plan.size(), 0);
+      for (std::size_t maxCount : {std::size_t{4}, std::size_t{1000}})
+        for (const EvaluationPlan::Group &g : plan.groups(maxCount)) {
+          ASSERT_GE(g.count, 1u);
+          ASSERT_LE(g.count, maxCount);
+          ASSERT_TRUE(g.members == 1 || g.members == n) << "n=" << n << " r=" << r;
+          for (int m = 0; m < g.members; ++m)
+            for (std::size_t o = 0; o < g.count; ++o) {
+              const std::size_t k = g.first + m * g.stride + o;
+              if (maxCount == 4) ++covered.at(k);
+              for (int i = 0; i < n; ++i) {
+                const int from = ((m - i) % g.members + g.members) % g.members;
+                ASSERT_EQ(plan.rotated(i, k), g.first + from * g.stride + o) << "n=" << n << " r=" << r << " k=" << k;
+              }
+            }
+        }
+      for (std::size_t k = 0; k < plan.size(); ++k) ASSERT_EQ(covered[k], 1) << "n=" << n << " r=" << r << " sample " << k;
+    }
+}
+
 TEST(EvaluationPlan, RotationRunsReadEverySideFromSideZero) {
   // Within a rotation run every side's samples are consecutive samples of
   // side 0's (the position path reads side 0's arrays there), and a run ends

@@ -103,6 +103,22 @@ TEST_P(PlannedPositions, MatchPointwiseEvaluationOnEveryBuiltin) {
         std::vector<double> x(plan->size()), y(plan->size()), z(plan->size());
         double *out[3] = {x.data(), y.data(), z.data()};
         patch.evaluatePlannedPositions(*plan, 0, plan->size(), out);
+        // By rotation groups (G²: the corner weights shared): the numbers of
+        // the members evaluated one by one (the same blocks of samples).
+        std::vector<double> grouped(3 * plan->size()), single(3 * plan->size());
+        const PositionSink groupedSink = PositionSink::soa(std::array<double *, 3>{
+            &grouped[0], &grouped[plan->size()], &grouped[2 * plan->size()]}.data());
+        const PositionSink singleSink = PositionSink::soa(std::array<double *, 3>{
+            &single[0], &single[plan->size()], &single[2 * plan->size()]}.data());
+        for (const EvaluationPlan::Group &g : plan->groups(f % 2 ? 5 : 200)) {
+          patch.evaluatePlannedGroup(*plan, g, groupedSink.from(g.first));
+          for (int m = 0; m < g.members; ++m)
+            patch.evaluatePlannedPositions(*plan, g.first + m * g.stride, g.count,
+                                           singleSink.from(g.first + m * g.stride));
+        }
+        std::size_t mismatches = 0;
+        for (std::size_t k = 0; k < grouped.size(); ++k) mismatches += grouped[k] != single[k];
+        EXPECT_EQ(mismatches, 0u) << info.name << " face " << f / 2 << " " << schemeName(o.scheme);
         std::vector<DualVec3> planned(plan->size());
         patch.evaluatePlanned(*plan, 0, plan->size(), planned.data());
         for (std::size_t k = 0; k < plan->size(); k += 23) {

@@ -212,16 +212,23 @@ void EvaluationPlan::sidesAndBlends(int i, std::size_t first, std::size_t count,
   }
 }
 
-std::vector<std::pair<std::size_t, std::size_t>> EvaluationPlan::ranges(std::size_t maxCount) const {
-  // The layout of the constructor: centre and spokes, then n equal triangle
-  // interiors that the rotations permute as wholes, sample for sample.
+std::vector<EvaluationPlan::Group> EvaluationPlan::groups(std::size_t maxCount) const {
+  // The layout of the constructor: the centre; n spokes of r − 1 samples and
+  // n triangle interiors, each permuted as wholes by the rotations.
+  CURVENET_CHECK(maxCount > 0, "sample groups of at most 0 samples");
   const int n = key_.sides;
-  const std::size_t interiorBase = interiorBase_, perTriangle = perTriangle_;
-  std::vector<std::pair<std::size_t, std::size_t>> out;
-  for (std::size_t k = 0; k < interiorBase; k += maxCount) out.push_back({k, std::min(maxCount, interiorBase - k)});
+  const std::size_t spoke = static_cast<std::size_t>(key_.resolution - 1), perTriangle = perTriangle_;
+  std::vector<Group> out{{0, 1, 0, 1}};
+  for (std::size_t q = 0; q < spoke; q += maxCount) out.push_back({1 + q, std::min(maxCount, spoke - q), spoke, n});
   for (std::size_t q = 0; q < perTriangle; q += maxCount)
-    for (int t = 0; t < n; ++t)
-      out.push_back({interiorBase + t * perTriangle + q, std::min(maxCount, perTriangle - q)});
+    out.push_back({interiorBase_ + q, std::min(maxCount, perTriangle - q), perTriangle, n});
+  return out;
+}
+
+std::vector<std::pair<std::size_t, std::size_t>> EvaluationPlan::ranges(std::size_t maxCount) const {
+  std::vector<std::pair<std::size_t, std::size_t>> out;
+  for (const Group &g : groups(maxCount))
+    for (int m = 0; m < g.members; ++m) out.push_back({g.first + m * g.stride, g.count});
   return out;
 }
 

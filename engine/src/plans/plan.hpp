@@ -41,7 +41,9 @@ public:
   std::size_t size() const { return samples_.size(); }
 
   /// Side i's (or corner i's) quantities at sample k, by rotation of side 0's.
-  std::size_t rotated(int i, std::size_t k) const { return rotation_[static_cast<std::size_t>(i) * size() + k]; }
+  std::size_t rotated(int i, std::size_t k) const {
+    return i == 0 ? k : rotation_[static_cast<std::size_t>(i) * size() + k];
+  }
   /// Gradient turned from side 0 to side i.
   Dual turn(int i, const Dual &x) const {
     return {x.v, cos_[i] * x.du - sin_[i] * x.dv, sin_[i] * x.du + cos_[i] * x.dv};
@@ -76,11 +78,22 @@ public:
   /// value, ∂/∂u, ∂/∂v of each into s[0 .. 2][j], blend[0 .. 2][j], j = k − first.
   void sidesAndBlends(int i, std::size_t first, std::size_t count, double *const s[3], double *const blend[3]) const;
 
-  /// Consecutive sample ranges [first, first + count) of at most
-  /// `maxCount` covering all samples, in an order that puts ranges next to
-  /// one another when the rotations map them onto one another (the same rows
-  /// of each centre–side triangle): evaluated in this order, the side data
-  /// read through rotated() are still in the cache from the previous range.
+  /// Samples that the rotations permute among themselves: `members` ranges
+  /// of `count` samples, member m being [first + m·stride, first + m·stride
+  /// + count), where side i's and corner i's data on member m are side 0's
+  /// and corner 0's on member (m − i) mod members, sample for sample. The
+  /// centre is a group of one member (every rotation fixes it); the spokes'
+  /// levels and the triangle interiors' rows come in groups of n.
+  struct Group {
+    std::size_t first = 0, count = 0, stride = 0;
+    int members = 1;
+  };
+  /// Groups covering every sample once, members of at most `maxCount`
+  /// samples, in sample order of their first members.
+  std::vector<Group> groups(std::size_t maxCount) const;
+  /// The members of groups(maxCount) as ranges [first, first + count), one
+  /// group's after another: evaluated in this order, the side data read
+  /// through rotated() are still in the cache from the previous range.
   std::vector<std::pair<std::size_t, std::size_t>> ranges(std::size_t maxCount) const;
 
   /// Bytes held.

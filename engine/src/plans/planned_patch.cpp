@@ -58,6 +58,12 @@ struct JetArrays {
 
 constexpr int kMaxSides = 8;
 constexpr int kMaxCornerVectors = 17; // a00 and the eight (a, b) pairs of eq. 22
+// Samples per pass of the position path: their ribbon values (up to 10
+// arrays per side: 51 KB for a G² pentagon) stay in the cache between the
+// table pass and the kernel pass. 128 measured fastest of 32 … 512
+// (pentagon r256: 64 is ~4% slower, the per-block calls, and 512 ~15%, the
+// cache).
+constexpr std::size_t kPositionBlock = 128;
 
 /// A composite-ribbon batch's inputs as arrays: side i's parameter s[i][k],
 /// distance d[i][k] and blend b[i][k] = q_i + q_{i+1} from the per-corner
@@ -198,19 +204,63 @@ void Patch::evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t fir
   }
 }
 
-void Patch::gregoryPositionsFrom(std::size_t count, const double *const *sideValues, const double *const *blendValues,
+void Patch::evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPlan::Group &group,
                                  const PositionSink &out) const {
-  // Blocks whose ribbon values (up to 10 arrays per side: 51 KB for a G²
-  // pentagon) stay in the cache between the table pass and the kernel pass.
-  // 128 samples measured fastest of 32 … 512 (pentagon r256: 64 is ~4%
-  // slower, the per-block calls, and 512 ~15%, the cache).
-  constexpr std::size_t kBlock = 128;
+  // Shared weights need every side's parameters to be side 0's rotated
+  // (not so on triangles, perSide()); G¹'s weights are too cheap to repay
+  // the round trip through memory (measured: 7% of its kernel if free).
+  if (options_.scheme != Scheme::GregoryG2 || plan.perSide()) {
+    for (int m = 0; m < group.members; ++m)
+      evaluatePlannedPositions(plan, group.first + m * group.stride, group.count, out.from(m * group.stride));
+    return;
+  }
+  CURVENET_CHECK(plan.key().sides == domain_.sides() && plan.key().scheme == options_.scheme,
+                 "plan for " + std::to_string(plan.key().sides) + " sides used on a patch with " +
+                     std::to_string(domain_.sides()));
+  const int n = domain_.sides(), members = group.members;
+  constexpr int kWeights = 8;
+  thread_local kernels::AlignedVector<double> weights;
+  weights.resize(static_cast<std::size_t>(members) * kWeights * kPositionBlock);
+  auto memberWeights = [&](int m) { return weights.data() + static_cast<std::size_t>(m) * kWeights * kPositionBlock; };
+  // Side i's (corner i's) data on member m: side 0's on member m − i, read
+  // by the group's arithmetic rather than the plan's rotation table.
+  auto source = [members](int m, int i) { return ((m - i) % members + members) % members; };
+  std::array<const double *, kMaxSides> side, blend, cornerWeights;
+  for (std::size_t offset = 0; offset < group.count; offset += kPositionBlock) {
+    const std::size_t count = std::min(kPositionBlock, group.count - offset);
+    auto start = [&](int m) { return group.first + m * group.stride + offset; };
+    // Corner 0's weights on every member: its s_0 and t_0 = 1 − s_{n−1}.
+    for (int m = 0; m < members; ++m) {
+      double *w[kWeights];
+      for (int j = 0; j < kWeights; ++j) w[j] = memberWeights(m) + j * kPositionBlock;
+      kernels::gregoryCornerWeights(count, plan.sideValuesFrom(0, start(m)),
+                                    plan.sideValuesFrom(0, start(source(m, n - 1))), w);
+    }
+    for (int m = 0; m < members; ++m) {
+      for (int i = 0; i < n; ++i) {
+        const int from = source(m, i);
+        side[i] = plan.sideValuesFrom(0, start(from)), blend[i] = plan.blendValuesFrom(0, start(from));
+        cornerWeights[i] = memberWeights(from);
+      }
+      gregoryPositionsFrom(count, side.data(), blend.data(), out.from(m * group.stride + offset), cornerWeights.data(),
+                           kPositionBlock);
+    }
+  }
+}
+
+void Patch::gregoryPositionsFrom(std::size_t count, const double *const *sideValues, const double *const *blendValues,
+                                 const PositionSink &out, const double *const *cornerWeights,
+                                 std::size_t weightStride) const {
   const int n = domain_.sides();
-  if (count > kBlock) {
-    std::array<const double *, kMaxSides> side, blend;
-    for (std::size_t first = 0; first < count; first += kBlock) {
-      for (int i = 0; i < n; ++i) side[i] = sideValues[i] + first, blend[i] = blendValues[i] + first;
-      gregoryPositionsFrom(std::min(kBlock, count - first), side.data(), blend.data(), out.from(first));
+  if (count > kPositionBlock) {
+    std::array<const double *, kMaxSides> side, blend, weights;
+    for (std::size_t first = 0; first < count; first += kPositionBlock) {
+      for (int i = 0; i < n; ++i) {
+        side[i] = sideValues[i] + first, blend[i] = blendValues[i] + first;
+        if (cornerWeights) weights[i] = cornerWeights[i] + first;
+      }
+      gregoryPositionsFrom(std::min(kPositionBlock, count - first), side.data(), blend.data(), out.from(first),
+                           cornerWeights ? weights.data() : nullptr, weightStride);
     }
     return;
   }
@@ -241,6 +291,10 @@ void Patch::gregoryPositionsFrom(std::size_t count, const double *const *sideVal
       in.P[i][c] = jets[c], in.T[i][c] = jets[3 + c];
       if (g2) in.C[i][c] = jets[6 + c];
     }
+  }
+  if (g2 && cornerWeights) {
+    for (int i = 0; i < n; ++i) in.weights[i] = cornerWeights[i];
+    in.weightStride = weightStride;
   }
   const kernels::GregoryCornerTerms *terms = g2 ? cornerTerms_.data() : nullptr;
   if (out.points) {
