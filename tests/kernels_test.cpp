@@ -308,7 +308,7 @@ TEST(Kernels, SharedG2CornerWeightsGiveTheSamePositions) {
       for (int i = 0; i < n; ++i) {
         double *into[8];
         for (int j = 0; j < 8; ++j) into[j] = weights[8 * i + j];
-        ck::gregoryCornerWeights(kCount, s[i], s[(i + n - 1) % n], into, w.id);
+        ck::gregoryCornerWeights(kCount, s[i], s[(i + n - 1) % n], into[0], kCount, w.id);
         for (size_t k = 0; k < kCount; ++k) {
           const long double si = s[i][k], ti = 1 - static_cast<long double>(s[(i + n - 1) % n][k]);
           int j = 0;

@@ -49,7 +49,8 @@ struct GregoryJetArgs {
 
 struct CornerWeightArgs {
   const double *s, *sPrevious;
-  double *const *weights;
+  double *weights;
+  std::size_t stride;
 };
 
 struct SweepArgs {
@@ -628,19 +629,29 @@ void GregoryPositions(std::size_t count, const GregoryArgs &args, bool reference
   else run(hn::ScalableTag<double>());
 }
 
+/// The weights of samples [k, end) in vectors of d's width (a loop of its
+/// own with its pointers in registers: the stores cannot alias them).
+template <class D>
+HWY_NOINLINE std::size_t cornerWeightsLoop(D d, std::size_t k, std::size_t end, const double *HWY_RESTRICT s,
+                                           const double *HWY_RESTRICT sPrevious, double *HWY_RESTRICT weights,
+                                           std::size_t stride) {
+  using V = hn::Vec<D>;
+  const std::size_t lanes = hn::Lanes(d);
+  const V one = hn::Set(d, 1.0);
+  for (; k + lanes <= end; k += lanes) {
+    // t as gregoryBody takes it, so that the weights are the same numbers.
+    const V sv = hn::LoadU(d, s + k), t = hn::Sub(one, hn::LoadU(d, sPrevious + k));
+    V w[8];
+    g2RationalWeights(d, sv, t, w);
+    for (int j = 0; j < 8; ++j) hn::StoreU(w[j], d, weights + j * stride + k);
+  }
+  return k;
+}
+
 void GregoryCornerWeights(std::size_t count, const CornerWeightArgs &args, bool reference) {
-  auto run = [&](auto tag) {
-    forEachVector(tag, count, [&](auto d, std::size_t k) {
-      using V = hn::Vec<decltype(d)>;
-      // t as gregoryBody takes it, so that the weights are the same numbers.
-      const V s = hn::LoadU(d, args.s + k), t = hn::Sub(hn::Set(d, 1.0), hn::LoadU(d, args.sPrevious + k));
-      V w[8];
-      g2RationalWeights(d, s, t, w);
-      for (int j = 0; j < 8; ++j) hn::StoreU(w[j], d, args.weights[j] + k);
-    });
-  };
-  if (reference) run(hn::CappedTag<double, 1>());
-  else run(hn::ScalableTag<double>());
+  std::size_t k = 0;
+  if (!reference) k = cornerWeightsLoop(hn::ScalableTag<double>(), 0, count, args.s, args.sPrevious, args.weights, args.stride);
+  cornerWeightsLoop(hn::CappedTag<double, 1>(), k, count, args.s, args.sPrevious, args.weights, args.stride);
 }
 
 /// Polynomial p(s) = Σ c_j s^j of degree ≤ 4, Horner.
@@ -1012,11 +1023,11 @@ GregoryCornerTerms gregoryCornerTerms(const GregoryCorner &corner) {
   return q;
 }
 
-void gregoryCornerWeights(std::size_t count, const double *s, const double *sPrevious, double *const weights[8],
-                          std::int64_t width) {
+void gregoryCornerWeights(std::size_t count, const double *s, const double *sPrevious, double *weights,
+                          std::size_t stride, std::int64_t width) {
   bool reference;
   const std::size_t index = tableIndex(width, reference);
-  HWY_DISPATCH_TABLE(GregoryCornerWeights)[index](count, {s, sPrevious, weights}, reference);
+  HWY_DISPATCH_TABLE(GregoryCornerWeights)[index](count, {s, sPrevious, weights, stride}, reference);
 }
 
 namespace {

@@ -230,12 +230,9 @@ void Patch::evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPla
     const std::size_t count = std::min(kPositionBlock, group.count - offset);
     auto start = [&](int m) { return group.first + m * group.stride + offset; };
     // Corner 0's weights on every member: its s_0 and t_0 = 1 − s_{n−1}.
-    for (int m = 0; m < members; ++m) {
-      double *w[kWeights];
-      for (int j = 0; j < kWeights; ++j) w[j] = memberWeights(m) + j * kPositionBlock;
+    for (int m = 0; m < members; ++m)
       kernels::gregoryCornerWeights(count, plan.sideValuesFrom(0, start(m)),
-                                    plan.sideValuesFrom(0, start(source(m, n - 1))), w);
-    }
+                                    plan.sideValuesFrom(0, start(source(m, n - 1))), memberWeights(m), kPositionBlock);
     for (int m = 0; m < members; ++m) {
       for (int i = 0; i < n; ++i) {
         const int from = source(m, i);

@@ -144,13 +144,13 @@ GregoryCornerTerms gregoryCornerTerms(const GregoryCorner &corner);
 
 /// The G² correction patch's eight rational weights at a corner, for
 /// s[0 .. count) and t = 1 − sPrevious[k] (GregorySamples: s_i and
-/// s_{i−1}): weights[j][k] = s³ t^q / (s^{3−p} + t^{3−q}), j counting
-/// (p, q) ≠ (0, 0) row by row, so that Q = Σ s^p t^q taylor[p][q] +
-/// Σ_j weights[j] rational[j] (GregoryCornerTerms); 0 at s = t = 0, the
-/// limit. The eight share one division (batch inversion). gregoryPositions
+/// s_{i−1}): weights[j · stride + k] = s³ t^q / (s^{3−p} + t^{3−q}), j
+/// counting (p, q) ≠ (0, 0) row by row, so that Q = Σ s^p t^q taylor[p][q]
+/// + Σ_j w_j rational[j] (GregoryCornerTerms); 0 at s = t = 0, the limit.
+/// The eight share one division (batch inversion). gregoryPositions
 /// computes the same numbers in the same operations when not given them.
-void gregoryCornerWeights(std::size_t count, const double *s, const double *sPrevious, double *const weights[8],
-                          std::int64_t width = kBestWidth);
+void gregoryCornerWeights(std::size_t count, const double *s, const double *sPrevious, double *weights,
+                          std::size_t stride, std::int64_t width = kBestWidth);
 
 /// (b) Gregory patch positions (paper 000 eqs. 16–18, 22):
 /// out[c][k] = Σ_i B_i (R_{i−1}(s_{i−1}, s_i) + R_i(s_i, t_i) − Q_i(s_i, t_i)),
