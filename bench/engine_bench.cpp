@@ -138,24 +138,45 @@ struct KernelData {
 
 constexpr std::size_t kBatch = 4096;
 
-/// The whole G² position kernel for a pentagon over random per-side data.
-void kernelGregoryBench(benchmark::State &state, std::int64_t width) {
+/// The whole G² position kernel for a pentagon over random per-side data,
+/// `batch` samples per call (the engine's plan evaluation calls it on 128,
+/// its per-side arrays in the cache); with sharedWeights the corners'
+/// weights computed beforehand, as a plan's rotation group supplies them.
+void kernelGregoryBench(benchmark::State &state, std::int64_t width, std::size_t batch, bool sharedWeights) {
   constexpr int n = 5;
-  KernelData in(n * 11, kBatch), out(3, kBatch);
+  KernelData in(n * 11, batch), out(3, batch), weights(8 * n, batch);
   ck::GregorySamples samples;
   samples.sides = n, samples.parabolic = true;
   for (int i = 0; i < n; ++i) {
-    samples.s[i] = in.at(11 * i, kBatch), samples.blend[i] = in.at(11 * i + 1, kBatch);
+    samples.s[i] = in.at(11 * i, batch), samples.blend[i] = in.at(11 * i + 1, batch);
     for (int c = 0; c < 3; ++c)
-      samples.P[i][c] = in.at(11 * i + 2 + c, kBatch), samples.T[i][c] = in.at(11 * i + 5 + c, kBatch),
-      samples.C[i][c] = in.at(11 * i + 8 + c, kBatch);
+      samples.P[i][c] = in.at(11 * i + 2 + c, batch), samples.T[i][c] = in.at(11 * i + 5 + c, batch),
+      samples.C[i][c] = in.at(11 * i + 8 + c, batch);
   }
   std::vector<ck::GregoryCorner> corners(n);
   for (auto &corner : corners)
     for (auto &v : corner.v) v[0] = 0.3, v[1] = -0.2, v[2] = 0.1;
-  double *o[3] = {out.at(0, kBatch), out.at(1, kBatch), out.at(2, kBatch)};
+  double *o[3] = {out.at(0, batch), out.at(1, batch), out.at(2, batch)};
+  if (sharedWeights) {
+    // As a plan's rotation group supplies them: computed once, outside.
+    for (int i = 0; i < n; ++i) {
+      samples.weights[i] = weights.at(8 * i, batch);
+      ck::gregoryCornerWeights(batch, samples.s[i], samples.s[(i + n - 1) % n], weights.at(8 * i, batch), batch, width);
+    }
+    samples.weightStride = batch;
+  }
   for (auto _ : state) {
-    ck::gregoryPositions(kBatch, samples, corners.data(), o, width);
+    ck::gregoryPositions(batch, samples, corners.data(), o, width);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * batch));
+}
+
+/// The eight G² corner weights of one corner.
+void kernelCornerWeightsBench(benchmark::State &state, std::int64_t width) {
+  KernelData in(2, kBatch), out(8, kBatch);
+  for (auto _ : state) {
+    ck::gregoryCornerWeights(kBatch, in.at(0, kBatch), in.at(1, kBatch), out.at(0, kBatch), kBatch, width);
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * kBatch));
@@ -280,7 +301,13 @@ int registerAll() {
   }
   for (const ck::Width &w : ck::availableWidths()) {
     const std::string suffix = "/" + w.name + "x" + std::to_string(w.lanes);
-    benchmark::RegisterBenchmark(("KernelGregoryPositionsG2n5" + suffix).c_str(), kernelGregoryBench, w.id);
+    benchmark::RegisterBenchmark(("KernelGregoryPositionsG2n5" + suffix).c_str(), kernelGregoryBench, w.id, kBatch,
+                                 false);
+    benchmark::RegisterBenchmark(("KernelGregoryPositionsG2n5Block128" + suffix).c_str(), kernelGregoryBench, w.id,
+                                 std::size_t{128}, false);
+    benchmark::RegisterBenchmark(("KernelGregoryPositionsG2n5Block128SharedWeights" + suffix).c_str(),
+                                 kernelGregoryBench, w.id, std::size_t{128}, true);
+    benchmark::RegisterBenchmark(("KernelG2CornerWeights" + suffix).c_str(), kernelCornerWeightsBench, w.id);
     benchmark::RegisterBenchmark(("KernelCompositeRibbonn5" + suffix).c_str(), kernelCompositeBench, w.id, false);
     benchmark::RegisterBenchmark(("KernelCompositeRibbonJetsn5" + suffix).c_str(), kernelCompositeBench, w.id, true);
     benchmark::RegisterBenchmark(("KernelTable9" + suffix).c_str(), kernelTableBench, w.id, false);
