@@ -197,6 +197,32 @@ TEST(Kernels, SweepSolverMatchesEigenvaluesScalarSolverAndAcrossWidths) {
 
 namespace {
 
+/// Random inputs of the Gregory position kernel: parameters and blends in
+/// [0, 1], ribbon values and corner vectors in [−2, 2], and a sample at
+/// corner 1 (s_1 = 0, s_0 = 1: the rational weights' limit) and one very
+/// near it (the batch inversion's underflow fallback).
+struct RandomGregoryInput {
+  Soa s, blend, P, T, C;
+  ck::GregorySamples in;
+  std::vector<ck::GregoryCorner> corners;
+  RandomGregoryInput(int n, bool parabolic, std::mt19937_64 &rng)
+      : s(n, kCount), blend(n, kCount), P(3 * n, kCount, &rng), T(3 * n, kCount, &rng), C(3 * n, kCount, &rng),
+        corners(n) {
+    std::uniform_real_distribution<double> unit(0, 1), u(-2, 2);
+    for (double &x : s.data) x = unit(rng);
+    for (double &x : blend.data) x = unit(rng);
+    s[1][5] = 0, s[0][5] = 1, s[1][6] = 1e-90, s[0][6] = 1 - 1e-16;
+    in.sides = n, in.parabolic = parabolic;
+    for (int i = 0; i < n; ++i) {
+      in.s[i] = s[i], in.blend[i] = blend[i];
+      for (int c = 0; c < 3; ++c) in.P[i][c] = P[3 * i + c], in.T[i][c] = T[3 * i + c], in.C[i][c] = C[3 * i + c];
+    }
+    for (auto &corner : corners)
+      for (auto &v : corner.v)
+        for (double &x : v) x = u(rng);
+  }
+};
+
 /// Gregory positions by the formula with plain divisions (no batch inversion).
 std::array<double, 3> gregoryFormula(const ck::GregorySamples &in, const ck::GregoryCorner *corners, size_t k) {
   std::array<double, 3> out{};
@@ -235,26 +261,11 @@ std::array<double, 3> gregoryFormula(const ck::GregorySamples &in, const ck::Gre
 
 TEST(Kernels, GregoryPositionsAgreeAcrossWidthsAndWithTheFormula) {
   std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> unit(0, 1);
   for (bool parabolic : {false, true})
     for (int n : {3, 5, 8}) {
-      Soa s(n, kCount), blend(n, kCount), P(3 * n, kCount, &rng), T(3 * n, kCount, &rng), C(3 * n, kCount, &rng);
-      for (double &x : s.data) x = unit(rng);
-      for (double &x : blend.data) x = unit(rng);
-      // A sample at corner 1 (s_1 = 0, s_0 = 1: the rational weights' limit)
-      // and one very near it (the batch inversion's underflow fallback).
-      s[1][5] = 0, s[0][5] = 1, s[1][6] = 1e-90, s[0][6] = 1 - 1e-16;
-      ck::GregorySamples in;
-      in.sides = n, in.parabolic = parabolic;
-      for (int i = 0; i < n; ++i) {
-        in.s[i] = s[i], in.blend[i] = blend[i];
-        for (int c = 0; c < 3; ++c) in.P[i][c] = P[3 * i + c], in.T[i][c] = T[3 * i + c], in.C[i][c] = C[3 * i + c];
-      }
-      std::vector<ck::GregoryCorner> corners(n);
-      std::uniform_real_distribution<double> u(-2, 2);
-      for (auto &corner : corners)
-        for (auto &v : corner.v)
-          for (double &x : v) x = u(rng);
+      RandomGregoryInput random(n, parabolic, rng);
+      const ck::GregorySamples &in = random.in;
+      const std::vector<ck::GregoryCorner> &corners = random.corners;
       Soa reference(3, kCount);
       double *refOut[3] = {reference[0], reference[1], reference[2]};
       ck::gregoryPositions(kCount, in, corners.data(), refOut, ck::kScalarReference);
@@ -286,23 +297,11 @@ TEST(Kernels, SharedG2CornerWeightsGiveTheSamePositions) {
   // long double, 0 at the corner itself), across widths; gregoryPositions
   // given them writes the very numbers it computes without them.
   std::mt19937_64 rng(23);
-  std::uniform_real_distribution<double> unit(0, 1);
   for (int n : {3, 5, 8}) {
-    Soa s(n, kCount), blend(n, kCount), P(3 * n, kCount, &rng), T(3 * n, kCount, &rng), C(3 * n, kCount, &rng);
-    for (double &x : s.data) x = unit(rng);
-    for (double &x : blend.data) x = unit(rng);
-    s[1][5] = 0, s[0][5] = 1, s[1][6] = 1e-90, s[0][6] = 1 - 1e-16; // at and next to corner 1
-    ck::GregorySamples in;
-    in.sides = n, in.parabolic = true;
-    for (int i = 0; i < n; ++i) {
-      in.s[i] = s[i], in.blend[i] = blend[i];
-      for (int c = 0; c < 3; ++c) in.P[i][c] = P[3 * i + c], in.T[i][c] = T[3 * i + c], in.C[i][c] = C[3 * i + c];
-    }
-    std::vector<ck::GregoryCorner> corners(n);
-    std::uniform_real_distribution<double> u(-2, 2);
-    for (auto &corner : corners)
-      for (auto &v : corner.v)
-        for (double &x : v) x = u(rng);
+    RandomGregoryInput random(n, true, rng);
+    ck::GregorySamples &in = random.in;
+    Soa &s = random.s;
+    const std::vector<ck::GregoryCorner> &corners = random.corners;
     for (const auto &w : ck::availableWidths()) {
       Soa weights(8 * n, kCount);
       for (int i = 0; i < n; ++i) {
