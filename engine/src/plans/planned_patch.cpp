@@ -207,8 +207,9 @@ void Patch::evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t fir
 void Patch::evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPlan::Group &group,
                                  const PositionSink &out) const {
   // Shared weights need every side's parameters to be side 0's rotated
-  // (not so on triangles, perSide()); G¹'s weights are too cheap to repay
-  // the round trip through memory (measured: 7% of its kernel if free).
+  // (not so on triangles, perSide()). G¹'s are too cheap to repay the round
+  // trip through memory: shared, its evaluation measured no faster (they are
+  // 7% of its kernel even when free, G²'s 29%).
   if (options_.scheme != Scheme::GregoryG2 || plan.perSide()) {
     for (int m = 0; m < group.members; ++m)
       evaluatePlannedPositions(plan, group.first + m * group.stride, group.count, out.from(m * group.stride));

@@ -112,8 +112,8 @@ struct GregorySamples {
   /// G², optional: corner i's rational weights from gregoryCornerWeights,
   /// weight j of sample k at weights[i][j · weightStride + k]. They depend on
   /// (s_i, t_i) alone, so samples that a rotation of the domain maps onto
-  /// one another share them: an evaluation plan computes them once for all
-  /// n corners (Patch::evaluatePlannedPositions). Null: computed here.
+  /// one another share them: the engine computes them once per rotation
+  /// group of a plan's samples for all n corners. Null: computed here.
   const double *weights[kMaxSides] = {};
   std::size_t weightStride = 0;
 };
