@@ -219,10 +219,13 @@ void Patch::evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPla
                  "plan for " + std::to_string(plan.key().sides) + " sides used on a patch with " +
                      std::to_string(domain_.sides()));
   const int n = domain_.sides(), members = group.members;
-  constexpr int kWeights = 8;
+  // Each member's eight weight arrays, a cache line apart modulo 4 KB (as
+  // the Scratch arrays: at a 1 KB stride, loads wait behind stores to
+  // other arrays that share their address bits).
+  constexpr std::size_t kWeights = 8, kWeightStride = kPositionBlock + 8;
   thread_local kernels::AlignedVector<double> weights;
-  weights.resize(static_cast<std::size_t>(members) * kWeights * kPositionBlock);
-  auto memberWeights = [&](int m) { return weights.data() + static_cast<std::size_t>(m) * kWeights * kPositionBlock; };
+  weights.resize(static_cast<std::size_t>(members) * kWeights * kWeightStride);
+  auto memberWeights = [&](int m) { return weights.data() + static_cast<std::size_t>(m) * kWeights * kWeightStride; };
   // Side i's (corner i's) data on member m: side 0's on member m − i, read
   // by the group's arithmetic rather than the plan's rotation table.
   auto source = [members](int m, int i) { return ((m - i) % members + members) % members; };
@@ -233,7 +236,7 @@ void Patch::evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPla
     // Corner 0's weights on every member: its s_0 and t_0 = 1 − s_{n−1}.
     for (int m = 0; m < members; ++m)
       kernels::gregoryCornerWeights(count, plan.sideValuesFrom(0, start(m)),
-                                    plan.sideValuesFrom(0, start(source(m, n - 1))), memberWeights(m), kPositionBlock);
+                                    plan.sideValuesFrom(0, start(source(m, n - 1))), memberWeights(m), kWeightStride);
     for (int m = 0; m < members; ++m) {
       for (int i = 0; i < n; ++i) {
         const int from = source(m, i);
@@ -241,7 +244,7 @@ void Patch::evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPla
         cornerWeights[i] = memberWeights(from);
       }
       gregoryPositionsFrom(count, side.data(), blend.data(), out.from(m * group.stride + offset), cornerWeights.data(),
-                           kPositionBlock);
+                           kWeightStride);
     }
   }
 }
