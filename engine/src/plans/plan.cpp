@@ -225,13 +225,6 @@ std::vector<EvaluationPlan::Group> EvaluationPlan::groups(std::size_t maxCount) 
   return out;
 }
 
-std::vector<std::pair<std::size_t, std::size_t>> EvaluationPlan::ranges(std::size_t maxCount) const {
-  std::vector<std::pair<std::size_t, std::size_t>> out;
-  for (const Group &g : groups(maxCount))
-    for (int m = 0; m < g.members; ++m) out.push_back({g.first + m * g.stride, g.count});
-  return out;
-}
-
 std::size_t EvaluationPlan::memory() const {
   return samples_.size() * sizeof(Vec2) + (s_.size() + d_.size() + b_.size()) * sizeof(Dual) +
          rotation_.size() * sizeof(std::uint32_t) + (sideValues_.size() + blendValues_.size()) * sizeof(double);

@@ -89,12 +89,10 @@ public:
     int members = 1;
   };
   /// Groups covering every sample once, members of at most `maxCount`
-  /// samples, in sample order of their first members.
+  /// samples, in sample order of their first members. Evaluated a group at
+  /// a time, the side data its members read through rotated() are the
+  /// group's own, still in the cache from the previous member.
   std::vector<Group> groups(std::size_t maxCount) const;
-  /// The members of groups(maxCount) as ranges [first, first + count), one
-  /// group's after another: evaluated in this order, the side data read
-  /// through rotated() are still in the cache from the previous range.
-  std::vector<std::pair<std::size_t, std::size_t>> ranges(std::size_t maxCount) const;
 
   /// Bytes held.
   std::size_t memory() const;

@@ -137,20 +137,18 @@ std::vector<std::vector<RowPoint>> boundaryRows(const Surface &surface, const La
   return rows;
 }
 
-/// Samples of one face: a rotation group (EvaluationPlan::Group), or a
-/// single range as a group of one member.
+/// Samples of one face: a rotation group (EvaluationPlan::Group).
 struct Tile {
   int face;
   EvaluationPlan::Group samples;
 };
 
-/// The plan and the tiles of samples of every face `wanted` accepts: one
-/// range each, or (`grouped`) one rotation group each, members of
-/// kTileSamples.
+/// The plan and the tiles of samples of every face `wanted` accepts: its
+/// rotation groups, members of at most kTileSamples.
 template <class Wanted>
 std::vector<Tile> planTiles(const Surface &surface, int resolution,
                             std::vector<std::shared_ptr<const EvaluationPlan>> &plans, std::size_t &total,
-                            const Wanted &wanted, bool grouped = false) {
+                            const Wanted &wanted) {
   std::vector<Tile> tiles;
   total = 0;
   plans.assign(static_cast<std::size_t>(surface.faceCount()), nullptr);
@@ -158,10 +156,7 @@ std::vector<Tile> planTiles(const Surface &surface, int resolution,
     if (!wanted(f)) continue;
     plans[f] = evaluationPlan(planKey(surface.faceOptions(f), surface.domainSides(f), resolution));
     const std::size_t size = plans[f]->size();
-    if (grouped)
-      for (const EvaluationPlan::Group &g : plans[f]->groups(kTileSamples)) tiles.push_back({f, g});
-    else
-      for (const auto &[first, count] : plans[f]->ranges(kTileSamples)) tiles.push_back({f, {first, count, 0, 1}});
+    for (const EvaluationPlan::Group &g : plans[f]->groups(kTileSamples)) tiles.push_back({f, g});
     total += size;
   }
   return tiles;
@@ -237,8 +232,7 @@ std::size_t evaluateFaceInteriors(const Surface &surface, std::span<Vec3> out, c
   if (options.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, options.threads);
   std::vector<std::shared_ptr<const EvaluationPlan>> plans;
   std::size_t total = 0;
-  const std::vector<Tile> tiles =
-      planTiles(surface, options.resolution, plans, total, [](int) { return true; }, /*grouped=*/true);
+  const std::vector<Tile> tiles = planTiles(surface, options.resolution, plans, total, [](int) { return true; });
   CURVENET_CHECK(total == count, "face interiors: plans and layout disagree on the sample count");
   std::vector<std::size_t> faceBase(static_cast<std::size_t>(faces) + 1, 0);
   for (int f = 0; f < faces; ++f) faceBase[f + 1] = faceBase[f] + plans[f]->size();
@@ -371,24 +365,27 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
     const std::vector<Tile> tiles = planTiles(surface, r, plans, total, wanted);
     forEachTile(tiles, total, [&](const Tile &tile) {
       thread_local std::vector<DualVec3> values;
-      const std::size_t first = tile.samples.first, count = tile.samples.count; // a single range
-      values.resize(count);
       const Patch &patch = *SurfaceAccess::patch(surface, tile.face);
       const EvaluationPlan &plan = *plans[tile.face];
-      patch.evaluatePlanned(plan, first, count, values.data());
-      for (std::size_t k = 0; k < count; ++k) {
-        const std::uint32_t id = layout.faceBase[tile.face] + static_cast<std::uint32_t>(first + k);
-        const DualVec3 &p = values[k];
-        const Vec2 uv = plan.samples()[first + k];
-        Vec3 normal = cross(p.du, p.dv);
-        // Degenerate only where Surface::evaluate takes the limit from inside.
-        if (squaredNorm(normal) <= 1e-24 * squaredNorm(p.du) * squaredNorm(p.dv))
-          normal = surface.evaluate(tile.face, uv).normal;
-        mesh.positions[id] = p.v + origin;
-        mesh.normals[id] = normalized(normal);
-        if (record) mesh.domainPoints[id] = {tile.face, uv};
+      const std::size_t count = tile.samples.count;
+      values.resize(count);
+      for (int m = 0; m < tile.samples.members; ++m) {
+        const std::size_t first = tile.samples.first + m * tile.samples.stride;
+        patch.evaluatePlanned(plan, first, count, values.data());
+        for (std::size_t k = 0; k < count; ++k) {
+          const std::uint32_t id = layout.faceBase[tile.face] + static_cast<std::uint32_t>(first + k);
+          const DualVec3 &p = values[k];
+          const Vec2 uv = plan.samples()[first + k];
+          Vec3 normal = cross(p.du, p.dv);
+          // Degenerate only where Surface::evaluate takes the limit from inside.
+          if (squaredNorm(normal) <= 1e-24 * squaredNorm(p.du) * squaredNorm(p.dv))
+            normal = surface.evaluate(tile.face, uv).normal;
+          mesh.positions[id] = p.v + origin;
+          mesh.normals[id] = normalized(normal);
+          if (record) mesh.domainPoints[id] = {tile.face, uv};
+        }
+        progress.advance(count);
       }
-      progress.advance(count);
     });
   }
 
