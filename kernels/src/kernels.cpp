@@ -371,7 +371,10 @@ template <class D, class V> HWY_INLINE void reciprocals(D d, V (&x)[8], V numera
 /// Powers 1, s, s², s³ and 1, t, t², t³, and the reciprocals of the eight
 /// denominators s^{3−p} + t^{3−r} of the G² correction patch, (p, r) ≠ (0, 0)
 /// row by row.
-template <class D, class V> HWY_INLINE void g2CornerWeights(D d, V s, V t, V (&sp)[4], V (&tp)[4], V (&den)[8]) {
+/// With OverS3, s³ / (s^{3−p} + t^{3−r}) instead of the reciprocals (s³
+/// the batch inversion's numerator, at no extra cost).
+template <bool OverS3 = false, class D, class V>
+HWY_INLINE void g2CornerWeights(D d, V s, V t, V (&sp)[4], V (&tp)[4], V (&den)[8]) {
   const V one = hn::Set(d, 1.0), s2 = hn::Mul(s, s), t2 = hn::Mul(t, t);
   sp[0] = one, sp[1] = s, sp[2] = s2, sp[3] = hn::Mul(s2, s);
   tp[0] = one, tp[1] = t, tp[2] = t2, tp[3] = hn::Mul(t2, t);
@@ -379,21 +382,15 @@ template <class D, class V> HWY_INLINE void g2CornerWeights(D d, V s, V t, V (&s
   for (int p = 0; p <= 2; ++p)
     for (int r = 0; r <= 2; ++r)
       if (p || r) den[j++] = hn::Add(sp[3 - p], tp[3 - r]);
-  reciprocals(d, den, one);
+  reciprocals(d, den, OverS3 ? sp[3] : one);
 }
 
-/// gregoryCornerWeights' eight weights s³ t^r / (s^{3−p} + t^{3−r}): s³ is
-/// the batch inversion's numerator, so the weights cost what the
-/// reciprocals did.
+/// gregoryCornerWeights' eight weights s³ t^r / (s^{3−p} + t^{3−r}): they
+/// cost what the reciprocals did.
 template <class D, class V> HWY_INLINE void g2RationalWeights(D d, V s, V t, V (&w)[8]) {
-  const V s2 = hn::Mul(s, s), t2 = hn::Mul(t, t), s3 = hn::Mul(s2, s);
-  const V sp[4] = {hn::Set(d, 1.0), s, s2, s3}, tp[4] = {sp[0], t, t2, hn::Mul(t2, t)};
+  V sp[4], tp[4];
+  g2CornerWeights<true>(d, s, t, sp, tp, w);
   int j = 0;
-  for (int p = 0; p <= 2; ++p)
-    for (int r = 0; r <= 2; ++r)
-      if (p || r) w[j++] = hn::Add(sp[3 - p], tp[3 - r]);
-  reciprocals(d, w, s3);
-  j = 0;
   for (int p = 0; p <= 2; ++p)
     for (int r = 0; r <= 2; ++r) {
       if (!p && !r) continue;

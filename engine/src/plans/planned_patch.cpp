@@ -168,11 +168,16 @@ const PatchTables &Patch::tables() const {
   return tables_->tables;
 }
 
+void Patch::checkPlan(const EvaluationPlan &plan) const {
+  CURVENET_CHECK(plan.key().sides == domain_.sides() && plan.key().scheme == options_.scheme,
+                 "plan for " + std::to_string(plan.key().sides) + " sides used on a patch with " +
+                     std::to_string(domain_.sides()));
+}
+
 void Patch::evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t first, std::size_t count,
                                      const PositionSink &out) const {
+  checkPlan(plan);
   const int n = domain_.sides();
-  CURVENET_CHECK(plan.key().sides == n && plan.key().scheme == options_.scheme,
-                 "plan for " + std::to_string(plan.key().sides) + " sides used on a patch with " + std::to_string(n));
   if (options_.scheme == Scheme::CompositeRibbon) {
     // The CR formula on values alone (no gradients): batched through the
     // tables at high resolutions, else per sample with exact ribbons.
@@ -206,6 +211,7 @@ void Patch::evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t fir
 
 void Patch::evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPlan::Group &group,
                                  const PositionSink &out) const {
+  checkPlan(plan);
   // Shared weights need every side's parameters to be side 0's rotated
   // (not so on triangles, perSide()). G¹'s are too cheap to repay the round
   // trip through memory: shared, its evaluation measured no faster (they are
@@ -215,9 +221,6 @@ void Patch::evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPla
       evaluatePlannedPositions(plan, group.first + m * group.stride, group.count, out.from(m * group.stride));
     return;
   }
-  CURVENET_CHECK(plan.key().sides == domain_.sides() && plan.key().scheme == options_.scheme,
-                 "plan for " + std::to_string(plan.key().sides) + " sides used on a patch with " +
-                     std::to_string(domain_.sides()));
   const int n = domain_.sides(), members = group.members;
   // Each member's eight weight arrays, a cache line apart modulo 4 KB (as
   // the Scratch arrays: at a 1 KB stride, loads wait behind stores to
@@ -405,9 +408,8 @@ void Patch::evaluatePositions(std::size_t count, const double *u, const double *
 }
 
 void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::size_t count, DualVec3 *out) const {
+  checkPlan(plan);
   const int n = domain_.sides();
-  CURVENET_CHECK(plan.key().sides == n && plan.key().scheme == options_.scheme,
-                 "plan for " + std::to_string(plan.key().sides) + " sides used on a patch with " + std::to_string(n));
   if (options_.scheme == Scheme::CompositeRibbon) {
     // With gradients: batched through the tables at high resolutions, else
     // per sample with exact ribbons.
