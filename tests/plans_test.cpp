@@ -145,7 +145,7 @@ TEST(EvaluationPlan, GroupsCoverEverySampleOnceAndRotateMemberOntoMember) {
               const std::size_t k = g.first + m * g.stride + o;
               if (maxCount == 4) ++covered.at(k);
               for (int i = 0; i < n; ++i) {
-                const int from = ((m - i) % g.members + g.members) % g.members;
+                const int from = g.source(m, i);
                 ASSERT_EQ(plan.rotated(i, k), g.first + from * g.stride + o) << "n=" << n << " r=" << r << " k=" << k;
               }
             }

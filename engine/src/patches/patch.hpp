@@ -170,10 +170,10 @@ private:
   void gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bool useTables, DualVec3 *out) const;
   /// The same from arrays sides[i·count + k], blends[i·count + k].
   void gregoryJetsFrom(std::size_t count, const Dual *sides, const Dual *blends, bool useTables, DualVec3 *out) const;
-  /// The Gregory formula's positions from every side's parameter and
-  /// corner blend values (arrays of `count`): tables, then the kernel.
   /// Throws unless `plan` was made for this patch's sides and scheme.
   void checkPlan(const EvaluationPlan &plan) const;
+  /// The Gregory formula's positions from every side's parameter and
+  /// corner blend values (arrays of `count`): tables, then the kernel.
   /// G²: corner i's rational weights may come in cornerWeights[i]
   /// (kernels::GregorySamples::weights, stride weightStride).
   void gregoryPositionsFrom(std::size_t count, const double *const *side, const double *const *blend,

@@ -87,6 +87,8 @@ public:
   struct Group {
     std::size_t first = 0, count = 0, stride = 0;
     int members = 1;
+    /// The member whose side-0 (corner-0) data are side i's (corner i's) on member m.
+    int source(int m, int i) const { return ((m - i) % members + members) % members; }
   };
   /// Groups covering every sample once, members of at most `maxCount`
   /// samples, in sample order of their first members. Evaluated a group at

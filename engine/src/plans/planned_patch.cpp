@@ -230,8 +230,8 @@ void Patch::evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPla
   weights.resize(static_cast<std::size_t>(members) * kWeights * kWeightStride);
   auto memberWeights = [&](int m) { return weights.data() + static_cast<std::size_t>(m) * kWeights * kWeightStride; };
   // Side i's (corner i's) data on member m: side 0's on member m − i, read
-  // by the group's arithmetic rather than the plan's rotation table.
-  auto source = [members](int m, int i) { return ((m - i) % members + members) % members; };
+  // by the group's arithmetic (Group::source) rather than the plan's
+  // rotation table.
   std::array<const double *, kMaxSides> side, blend, cornerWeights;
   for (std::size_t offset = 0; offset < group.count; offset += kPositionBlock) {
     const std::size_t count = std::min(kPositionBlock, group.count - offset);
@@ -239,10 +239,10 @@ void Patch::evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPla
     // Corner 0's weights on every member: its s_0 and t_0 = 1 − s_{n−1}.
     for (int m = 0; m < members; ++m)
       kernels::gregoryCornerWeights(count, plan.sideValuesFrom(0, start(m)),
-                                    plan.sideValuesFrom(0, start(source(m, n - 1))), memberWeights(m), kWeightStride);
+                                    plan.sideValuesFrom(0, start(group.source(m, n - 1))), memberWeights(m), kWeightStride);
     for (int m = 0; m < members; ++m) {
       for (int i = 0; i < n; ++i) {
-        const int from = source(m, i);
+        const int from = group.source(m, i);
         side[i] = plan.sideValuesFrom(0, start(from)), blend[i] = plan.blendValuesFrom(0, start(from));
         cornerWeights[i] = memberWeights(from);
       }
