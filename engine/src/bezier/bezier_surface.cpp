@@ -259,9 +259,9 @@ struct Unit {
 
 Vec3 rowPoint(const QuinticPatch &patch, int side, int m) { return patch.at(side, m, 1); }
 
-} // namespace
-
-BezierSurfaceData buildBezierSurface(const Network &network, bool g1) {
+/// The 4-sided check, and the network the patches are built on: the input,
+/// or for G¹ with a T-junction at a vertex its three-rectangle subdivision.
+BezierSurfaceData constructionFor(const Network &network, bool g1) {
   BezierSurfaceData data;
   for (size_t f = 0; f < network.faces().size(); ++f)
     if (network.faces()[f].sideCount() != 4)
@@ -280,141 +280,212 @@ BezierSurfaceData buildBezierSurface(const Network &network, bool g1) {
     for (size_t f = 0; f < network.faces().size(); ++f)
       data.faces.push_back({{static_cast<int>(f)}, {{Vec2{0, 0}, Vec2{1, 0}, Vec2{1, 1}, Vec2{0, 1}}}, 0});
   }
-  const Network &net = data.construction;
-  const double diagonal = net.diagonal();
-  const int faceCount = static_cast<int>(net.faces().size());
+  return data;
+}
 
-  // 1. Coons patches; boundary cells are constants, interior cells unknowns.
-  Unknowns x;
-  std::vector<std::array<std::array<Expr, 6>, 6>> grid(faceCount);
-  data.patches.resize(faceCount);
-  for (int f = 0; f < faceCount; ++f) {
-    const Face &face = net.faces()[f];
-    std::array<std::vector<Vec3>, 4> cubic;
-    for (int k = 0; k < 4; ++k)
-      cubic[k] = cubicPoints(face.sides[k].curve, faceName(f) + " side " + std::to_string(k));
-    data.patches[f] = coonsPatch(cubic);
-    for (int i = 0; i < 6; ++i)
-      for (int j = 0; j < 6; ++j) {
-        Expr &e = grid[f][i][j];
-        if (i == 0 || j == 0 || i == 5 || j == 5) e.constant = data.patches[f].net[i][j];
-        else e.terms = {{x.addVar(data.patches[f].net[i][j]), 1.0}};
-      }
+/// k = 0 and k = a + 5 of an edge unit: (R − P) λ + w μ' = Q − P in the
+/// tangent plane at `vertex`; {λ, μ'}, or InputError when the tangents there
+/// are not coplanar.
+std::array<double, 2> endValues(const Vec3 &P, const Vec3 &R, const Vec3 &w, const Vec3 &Q, int vertex, double length) {
+  Eigen::Matrix<double, 3, 2> A;
+  Eigen::Vector3d rhs;
+  for (int c = 0; c < 3; ++c) A(c, 0) = R[c] - P[c], A(c, 1) = w[c], rhs(c) = Q[c] - P[c];
+  const Eigen::Vector2d s = A.colPivHouseholderQr().solve(rhs);
+  if ((A * s - rhs).norm() > 1e-8 * length || !std::isfinite(s(0)))
+    throw InputError("", "vertex " + std::to_string(vertex),
+                     "the curve tangents there are not coplanar (or two coincide): no G1 surface with these "
+                     "curves unchanged (paper 003, case 4-a)");
+  return {s(0), s(1)};
+}
+
+/// The G¹ construction of [OSK11] over one construction network, in the
+/// order of its steps (build()): Coons patches whose interior cells are the
+/// unknowns; edge units (T-junction sides, then ordinary interior edges) with
+/// their λ, μ and G¹ equations; the vertex systems; the edge systems; the
+/// residual of every equation and the final control nets.
+class BezierConstruction {
+public:
+  explicit BezierConstruction(BezierSurfaceData &data)
+      : data_(data), net_(data.construction), faceCount_(static_cast<int>(net_.faces().size())) {}
+
+  void startFromCoonsPatches();
+  void build() {
+    replaced_.assign(x_.value.size(), 0);
+    inLongUnit_.assign(net_.segments().size(), 0);
+    for (int f = 0; f < faceCount_; ++f)
+      for (int k = 0; k < 4; ++k) addTJunctionUnit(f, k);
+    for (Unit &u : units_)
+      for (int m = 0; m < 6; ++m) u.r[m] = cell(u.rowFace, u.rowSide, m, 1);
+    addInteriorEdgeUnits();
+    for (Unit &u : units_) addEquations(u);
+    solveVertexSystems();
+    solveEdgeSystems();
+    finish();
   }
-  if (!g1) return data;
 
-  auto cell = [&](int f, int side, int m, int depth) -> Expr & {
+private:
+  Expr &cell(int f, int side, int m, int depth) {
     auto [i, j] = QuinticPatch::sideIndex(side, m, depth);
-    return grid[f][i][j];
-  };
-  auto sideOfSegment = [&](int f, int e) {
-    const Face &face = net.faces()[f];
+    return grid_[f][i][j];
+  }
+  int sideOfSegment(int f, int e) const {
+    const Face &face = net_.faces()[f];
     for (int k = 0; k < 4; ++k)
       for (int s : face.sides[k].segments)
         if (s == e) return k;
     return -1;
+  }
+
+  struct SubFace {
+    int face, side; ///< a face across a T-junction side, and its side there
   };
+  using Restrictions = std::vector<std::vector<std::vector<double>>>;
+  void addTJunctionUnit(int f, int k);
+  std::array<Expr, 6> virtualRow(const std::vector<SubFace> &subs, const Restrictions &R);
+  void substituteSubRows(Unit &u, const std::vector<SubFace> &subs, const Restrictions &R, const std::array<Expr, 6> &V,
+                         const std::string &element);
+  void addInteriorEdgeUnits();
+  void addEquations(Unit &u);
+  void solveVertexSystems();
+  void solveEdgeSystems();
+  void finish();
 
-  std::vector<Unit> units;
-  std::set<int> tVertices;
-  std::vector<char> inLongUnit(net.segments().size(), 0);
-  std::vector<char> replaced(x.value.size(), 0);
+  BezierSurfaceData &data_;
+  const Network &net_;
+  const int faceCount_;
+  Unknowns x_;
+  std::vector<std::array<std::array<Expr, 6>, 6>> grid_; ///< per face, its 6 × 6 control net as expressions
+  std::vector<Unit> units_;
+  std::set<int> tVertices_;
+  std::vector<char> inLongUnit_; ///< per segment: part of a T-junction side's unit
+  std::vector<char> replaced_;   ///< per unknown: substituted by a virtual row
+  std::vector<std::vector<char>> used_; ///< per unit and equation: already solved in a stage
+};
 
-  // 2. T-junctions on a boundary: one unit per side spanning two segments.
-  for (int f = 0; f < faceCount; ++f)
-    for (int k = 0; k < 4; ++k) {
-      const FaceSide &side = net.faces()[f].sides[k];
-      if (side.segments.size() < 2) continue;
-      const std::string element = faceName(f) + " side " + std::to_string(k);
-      int others = 0;
-      for (int e : side.segments) others += !net.segments()[e].isBoundary();
-      if (others == 0) continue;
-      if (others != static_cast<int>(side.segments.size()))
-        throw InputError("", element, "a T-node side with faces across only part of it is not supported");
-      if (side.segments.size() > 2)
-        throw InputError("", element, "more than one T-junction on one side is not supported (paper 003, future work)");
-      Unit u;
-      u.element = element + " (T-junction side)";
-      const std::vector<Vec3> q = cubicPoints(side.curve, element);
-      std::copy(q.begin(), q.end(), u.q.begin());
-      u.startVertex = side.startVertex;
-      u.endVertex = side.endVertex;
-      u.rowFace = f, u.rowSide = k;
-      // The virtual row V across the side: sub-face j covers [b_j, b_{j+1}]
-      // and runs it backwards.
-      std::vector<double> b{0.0};
-      for (double t : side.breaks) b.push_back(t);
-      b.push_back(1.0);
-      struct Sub {
-        int face, side;
-      };
-      std::vector<Sub> subs;
-      for (size_t j = 0; j < side.segments.size(); ++j) {
-        const Segment &seg = net.segments()[side.segments[j]];
-        const int g = seg.faces[0] == f ? seg.faces[1] : seg.faces[0];
-        const int kk = sideOfSegment(g, side.segments[j]);
-        if (net.faces()[g].sides[kk].segments.size() != 1)
-          throw InputError("", element, "T-node sides facing each other are not supported");
-        subs.push_back({g, kk});
-        inLongUnit[side.segments[j]] = 1;
+/// Step 1: Coons patches; boundary cells are constants, interior cells unknowns.
+void BezierConstruction::startFromCoonsPatches() {
+  grid_.resize(faceCount_);
+  data_.patches.resize(faceCount_);
+  for (int f = 0; f < faceCount_; ++f) {
+    const Face &face = net_.faces()[f];
+    std::array<std::vector<Vec3>, 4> cubic;
+    for (int k = 0; k < 4; ++k) cubic[k] = cubicPoints(face.sides[k].curve, faceName(f) + " side " + std::to_string(k));
+    data_.patches[f] = coonsPatch(cubic);
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j) {
+        Expr &e = grid_[f][i][j];
+        if (i == 0 || j == 0 || i == 5 || j == 5) e.constant = data_.patches[f].net[i][j];
+        else e.terms = {{x_.addVar(data_.patches[f].net[i][j]), 1.0}};
       }
-      for (size_t j = 0; j + 1 < side.segments.size(); ++j) {
-        const Segment &seg = net.segments()[side.segments[j]];
-        tVertices.insert(side.segmentReversed[j] ? seg.start : seg.end);
-      }
-      std::array<Expr, 6> V;
-      V[0].constant = cell(subs.front().face, subs.front().side, 5, 1).constant;
-      V[5].constant = cell(subs.back().face, subs.back().side, 0, 1).constant;
-      // Initial V: least-squares fit of the sub-faces' Coons rows.
-      std::vector<std::vector<std::vector<double>>> R;
-      for (size_t j = 0; j < subs.size(); ++j) R.push_back(restrictionMatrix(5, b[j], b[j + 1]));
-      Eigen::MatrixXd M = Eigen::MatrixXd::Zero(6 * static_cast<int>(subs.size()), 4);
-      Eigen::MatrixXd rhs(6 * static_cast<int>(subs.size()), 3);
-      for (size_t j = 0; j < subs.size(); ++j)
-        for (int m = 0; m < 6; ++m) {
-          const int row = 6 * static_cast<int>(j) + m;
-          const Vec3 target = rowPoint(data.patches[subs[j].face], subs[j].side, 5 - m);
-          Vec3 known = R[j][m][0] * V[0].constant + R[j][m][5] * V[5].constant;
-          for (int n = 1; n < 5; ++n) M(row, n - 1) = R[j][m][n];
-          for (int c = 0; c < 3; ++c) rhs(row, c) = target[c] - known[c];
-        }
-      const Eigen::MatrixXd fit = M.colPivHouseholderQr().solve(rhs);
-      for (int n = 1; n < 5; ++n) V[n].terms = {{x.addVar({fit(n - 1, 0), fit(n - 1, 1), fit(n - 1, 2)}), 1.0}};
-      const std::vector<Expr> Vlist(V.begin(), V.end());
-      for (size_t j = 0; j < subs.size(); ++j)
-        for (int m = 0; m < 6; ++m) {
-          const Expr e = combine(R[j][m], Vlist);
-          Expr &target = cell(subs[j].face, subs[j].side, 5 - m, 1);
-          if (m == 0 || m == 5) {
-            // Ends of the sub-row are boundary points: at A and B they are V₀,
-            // V₅; at the T they pin V(c) to the curve ending there.
-            if (!e.isConstant()) {
-              Equation pin;
-              pin.vars = e.terms;
-              pin.rhs = target.constant - e.constant;
-              u.pins.push_back(pin);
-            }
-            continue;
-          }
-          CURVENET_CHECK(target.terms.size() == 1, element);
-          if (replaced[target.terms[0].var])
-            throw InputError("", faceName(subs[j].face), "two adjacent sides on T-junction sides are not supported");
-          replaced[target.terms[0].var] = 1;
-          x.fixed[target.terms[0].var] = 1;
-          target = e;
-        }
-      // V's cells must not be reused: the arrays above were copied.
-      for (int m = 0; m < 6; ++m) u.p[m] = V[m];
-      units.push_back(std::move(u));
+  }
+}
+
+/// Step 2: a T-junction on a boundary — side k of face f spanning two
+/// segments with faces across — becomes one unit: a virtual row V across the
+/// side, of which the sub-faces' first inner rows become restrictions.
+void BezierConstruction::addTJunctionUnit(int f, int k) {
+  const FaceSide &side = net_.faces()[f].sides[k];
+  if (side.segments.size() < 2) return;
+  const std::string element = faceName(f) + " side " + std::to_string(k);
+  int others = 0;
+  for (int e : side.segments) others += !net_.segments()[e].isBoundary();
+  if (others == 0) return;
+  if (others != static_cast<int>(side.segments.size()))
+    throw InputError("", element, "a T-node side with faces across only part of it is not supported");
+  if (side.segments.size() > 2)
+    throw InputError("", element, "more than one T-junction on one side is not supported (paper 003, future work)");
+  Unit u;
+  u.element = element + " (T-junction side)";
+  const std::vector<Vec3> q = cubicPoints(side.curve, element);
+  std::copy(q.begin(), q.end(), u.q.begin());
+  u.startVertex = side.startVertex;
+  u.endVertex = side.endVertex;
+  u.rowFace = f, u.rowSide = k;
+  // Sub-face j covers [b_j, b_{j+1}] of the side and runs it backwards.
+  std::vector<double> b{0.0};
+  for (double t : side.breaks) b.push_back(t);
+  b.push_back(1.0);
+  std::vector<SubFace> subs;
+  for (size_t j = 0; j < side.segments.size(); ++j) {
+    const Segment &seg = net_.segments()[side.segments[j]];
+    const int g = seg.faces[0] == f ? seg.faces[1] : seg.faces[0];
+    const int kk = sideOfSegment(g, side.segments[j]);
+    if (net_.faces()[g].sides[kk].segments.size() != 1)
+      throw InputError("", element, "T-node sides facing each other are not supported");
+    subs.push_back({g, kk});
+    inLongUnit_[side.segments[j]] = 1;
+  }
+  for (size_t j = 0; j + 1 < side.segments.size(); ++j) {
+    const Segment &seg = net_.segments()[side.segments[j]];
+    tVertices_.insert(side.segmentReversed[j] ? seg.start : seg.end);
+  }
+  Restrictions R;
+  for (size_t j = 0; j < subs.size(); ++j) R.push_back(restrictionMatrix(5, b[j], b[j + 1]));
+  const std::array<Expr, 6> V = virtualRow(subs, R);
+  substituteSubRows(u, subs, R, V, element);
+  // V's cells must not be reused: the arrays above were copied.
+  for (int m = 0; m < 6; ++m) u.p[m] = V[m];
+  units_.push_back(std::move(u));
+}
+
+/// The virtual row across a T-junction side: its ends fixed by the outer
+/// sub-faces' rows, its four inner points new unknowns that start as the
+/// least-squares fit of the sub-faces' Coons rows (R[j]: the restriction to
+/// sub-face j's part of the side).
+std::array<Expr, 6> BezierConstruction::virtualRow(const std::vector<SubFace> &subs, const Restrictions &R) {
+  std::array<Expr, 6> V;
+  V[0].constant = cell(subs.front().face, subs.front().side, 5, 1).constant;
+  V[5].constant = cell(subs.back().face, subs.back().side, 0, 1).constant;
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(6 * static_cast<int>(subs.size()), 4);
+  Eigen::MatrixXd rhs(6 * static_cast<int>(subs.size()), 3);
+  for (size_t j = 0; j < subs.size(); ++j)
+    for (int m = 0; m < 6; ++m) {
+      const int row = 6 * static_cast<int>(j) + m;
+      const Vec3 target = rowPoint(data_.patches[subs[j].face], subs[j].side, 5 - m);
+      Vec3 known = R[j][m][0] * V[0].constant + R[j][m][5] * V[5].constant;
+      for (int n = 1; n < 5; ++n) M(row, n - 1) = R[j][m][n];
+      for (int c = 0; c < 3; ++c) rhs(row, c) = target[c] - known[c];
     }
+  const Eigen::MatrixXd fit = M.colPivHouseholderQr().solve(rhs);
+  for (int n = 1; n < 5; ++n) V[n].terms = {{x_.addVar({fit(n - 1, 0), fit(n - 1, 1), fit(n - 1, 2)}), 1.0}};
+  return V;
+}
 
-  for (Unit &u : units)
-    for (int m = 0; m < 6; ++m) u.r[m] = cell(u.rowFace, u.rowSide, m, 1);
+/// Each sub-face's first inner row becomes its restriction of V (those
+/// unknowns are dropped); the row's ends, boundary points, become pins of
+/// the unit where they depend on V.
+void BezierConstruction::substituteSubRows(Unit &u, const std::vector<SubFace> &subs, const Restrictions &R,
+                                           const std::array<Expr, 6> &V, const std::string &element) {
+  const std::vector<Expr> Vlist(V.begin(), V.end());
+  for (size_t j = 0; j < subs.size(); ++j)
+    for (int m = 0; m < 6; ++m) {
+      const Expr e = combine(R[j][m], Vlist);
+      Expr &target = cell(subs[j].face, subs[j].side, 5 - m, 1);
+      if (m == 0 || m == 5) {
+        // At A and B the ends are V₀, V₅; at the T they pin V(c) to the
+        // curve ending there.
+        if (!e.isConstant()) {
+          Equation pin;
+          pin.vars = e.terms;
+          pin.rhs = target.constant - e.constant;
+          u.pins.push_back(pin);
+        }
+        continue;
+      }
+      CURVENET_CHECK(target.terms.size() == 1, element);
+      if (replaced_[target.terms[0].var])
+        throw InputError("", faceName(subs[j].face), "two adjacent sides on T-junction sides are not supported");
+      replaced_[target.terms[0].var] = 1;
+      x_.fixed[target.terms[0].var] = 1;
+      target = e;
+    }
+}
 
-  // 3. Ordinary interior edges: one unit per segment.
-  for (size_t e = 0; e < net.segments().size(); ++e) {
-    const Segment &seg = net.segments()[e];
-    if (seg.isBoundary() || inLongUnit[e]) continue;
+/// Step 3: ordinary interior edges, one unit per segment.
+void BezierConstruction::addInteriorEdgeUnits() {
+  for (size_t e = 0; e < net_.segments().size(); ++e) {
+    const Segment &seg = net_.segments()[e];
+    if (seg.isBoundary() || inLongUnit_[e]) continue;
     Unit u;
     u.element = "segment " + std::to_string(e) + " (curve " + std::to_string(seg.sourceCurve) + ")";
     const std::vector<Vec3> q = cubicPoints(seg.curve, u.element);
@@ -423,83 +494,74 @@ BezierSurfaceData buildBezierSurface(const Network &network, bool g1) {
     u.endVertex = seg.end;
     for (int s = 0; s < 2; ++s) {
       const int f = seg.faces[s], k = sideOfSegment(f, static_cast<int>(e));
-      const bool reversed = net.faces()[f].sides[k].segmentReversed[0];
+      const bool reversed = net_.faces()[f].sides[k].segmentReversed[0];
       for (int m = 0; m < 6; ++m) (s == 0 ? u.p : u.r)[m] = cell(f, k, reversed ? 5 - m : m, 1);
     }
-    units.push_back(std::move(u));
+    units_.push_back(std::move(u));
   }
+}
 
-  // 4. λ and μ of every unit, and its equations k = 0 … a + 5.
-  for (Unit &u : units) {
-    u.tStart = tVertices.count(u.startVertex) > 0;
-    u.tEnd = tVertices.count(u.endVertex) > 0;
-    u.length = norm(u.q[1] - u.q[0]) + norm(u.q[2] - u.q[1]) + norm(u.q[3] - u.q[2]);
-    // k = 0 and k = a + 5: (R − P) λ + w μ' = Q − P in the tangent plane.
-    auto endValues = [&](const Vec3 &P, const Vec3 &R, const Vec3 &w, const Vec3 &Q, int vertex) {
-      Eigen::Matrix<double, 3, 2> A;
-      Eigen::Vector3d rhs;
-      for (int c = 0; c < 3; ++c) A(c, 0) = R[c] - P[c], A(c, 1) = w[c], rhs(c) = Q[c] - P[c];
-      const Eigen::Vector2d s = A.colPivHouseholderQr().solve(rhs);
-      if ((A * s - rhs).norm() > 1e-8 * u.length || !std::isfinite(s(0)))
-        throw InputError("", "vertex " + std::to_string(vertex),
-                         "the curve tangents there are not coplanar (or two coincide): no G1 surface with these "
-                         "curves unchanged (paper 003, case 4-a)");
-      return std::array<double, 2>{s(0), s(1)};
-    };
-    const auto [l0, m0] = endValues(u.p[0].constant, u.r[0].constant, -(u.q[1] - u.q[0]), u.q[0], u.startVertex);
-    const auto [l1, nu1] = endValues(u.p[5].constant, u.r[5].constant, u.q[3] - u.q[2], u.q[3], u.endVertex);
-    const double m1 = 1 - nu1;
-    u.lambda = {l0};
-    if (u.tStart) u.lambda.push_back(l0); // flat λ at a T-junction: λ₀ = λ₁
-    if (u.tEnd) u.lambda.push_back(l1);
-    u.lambda.push_back(l1);
-    const int a = static_cast<int>(u.lambda.size()) - 1, bdeg = a + 3, n = a + 5;
-    for (int i = 0; i <= bdeg; ++i)
-      u.mu.push_back(x.addMu(m0 + (m1 - m0) * i / bdeg, 1.0 / u.length, i == 0 || i == bdeg));
-    for (int k = 0; k <= n; ++k) {
-      std::vector<double> wp, wr;
-      std::vector<Expr> ex;
-      for (int i = std::max(0, k - 5); i <= std::min(a, k); ++i) {
-        const double w = binomial(a, i) * binomial(5, k - i) / binomial(n, k);
-        ex.push_back(u.p[k - i]);
-        wp.push_back(w * (1 - u.lambda[i]));
-        ex.push_back(u.r[k - i]);
-        wp.push_back(w * u.lambda[i]);
-      }
-      const Expr lhs = combine(wp, ex);
-      Equation eq;
-      eq.vars = lhs.terms;
-      eq.rhs = -lhs.constant;
-      for (int i = std::max(0, k - 2); i <= std::min(bdeg, k); ++i) {
-        const int l = k - i;
-        const double v = binomial(bdeg, i) * binomial(2, l) / binomial(n, k);
-        eq.rhs += v * u.q[l];
-        eq.mus.push_back({u.mu[i], -v * (u.q[l + 1] - u.q[l])});
-      }
-      u.eqs.push_back(eq);
+/// Step 4: λ and μ of a unit, and its equations k = 0 … a + 5.
+void BezierConstruction::addEquations(Unit &u) {
+  u.tStart = tVertices_.count(u.startVertex) > 0;
+  u.tEnd = tVertices_.count(u.endVertex) > 0;
+  u.length = norm(u.q[1] - u.q[0]) + norm(u.q[2] - u.q[1]) + norm(u.q[3] - u.q[2]);
+  const auto [l0, m0] = endValues(u.p[0].constant, u.r[0].constant, -(u.q[1] - u.q[0]), u.q[0], u.startVertex, u.length);
+  const auto [l1, nu1] = endValues(u.p[5].constant, u.r[5].constant, u.q[3] - u.q[2], u.q[3], u.endVertex, u.length);
+  const double m1 = 1 - nu1;
+  u.lambda = {l0};
+  if (u.tStart) u.lambda.push_back(l0); // flat λ at a T-junction: λ₀ = λ₁
+  if (u.tEnd) u.lambda.push_back(l1);
+  u.lambda.push_back(l1);
+  const int a = static_cast<int>(u.lambda.size()) - 1, bdeg = a + 3, n = a + 5;
+  for (int i = 0; i <= bdeg; ++i) u.mu.push_back(x_.addMu(m0 + (m1 - m0) * i / bdeg, 1.0 / u.length, i == 0 || i == bdeg));
+  for (int k = 0; k <= n; ++k) {
+    std::vector<double> wp;
+    std::vector<Expr> ex;
+    for (int i = std::max(0, k - 5); i <= std::min(a, k); ++i) {
+      const double w = binomial(a, i) * binomial(5, k - i) / binomial(n, k);
+      ex.push_back(u.p[k - i]);
+      wp.push_back(w * (1 - u.lambda[i]));
+      ex.push_back(u.r[k - i]);
+      wp.push_back(w * u.lambda[i]);
     }
+    const Expr lhs = combine(wp, ex);
+    Equation eq;
+    eq.vars = lhs.terms;
+    eq.rhs = -lhs.constant;
+    for (int i = std::max(0, k - 2); i <= std::min(bdeg, k); ++i) {
+      const int l = k - i;
+      const double v = binomial(bdeg, i) * binomial(2, l) / binomial(n, k);
+      eq.rhs += v * u.q[l];
+      eq.mus.push_back({u.mu[i], -v * (u.q[l + 1] - u.q[l])});
+    }
+    u.eqs.push_back(eq);
   }
+}
 
-  // 5. Vertex systems, except at T-junctions (the subdivision settles those).
-  std::vector<std::vector<char>> used(units.size());
-  for (size_t i = 0; i < units.size(); ++i) used[i].assign(units[i].eqs.size(), 0);
-  for (size_t v = 0; v < net.vertices().size(); ++v) {
-    if (tVertices.count(static_cast<int>(v))) continue;
+/// Step 5: the vertex systems (each unit's equation next to the vertex),
+/// except at T-junctions, which the subdivision settles; one report each.
+void BezierConstruction::solveVertexSystems() {
+  used_.resize(units_.size());
+  for (size_t i = 0; i < units_.size(); ++i) used_[i].assign(units_[i].eqs.size(), 0);
+  const double diagonal = net_.diagonal();
+  for (size_t v = 0; v < net_.vertices().size(); ++v) {
+    if (tVertices_.count(static_cast<int>(v))) continue;
     std::vector<Equation> eqs;
-    for (size_t i = 0; i < units.size(); ++i) {
-      Unit &u = units[i];
+    for (size_t i = 0; i < units_.size(); ++i) {
+      Unit &u = units_[i];
       const int last = static_cast<int>(u.eqs.size()) - 1;
-      if (u.startVertex == static_cast<int>(v)) eqs.push_back(u.eqs[1]), used[i][1] = 1;
-      if (u.endVertex == static_cast<int>(v)) eqs.push_back(u.eqs[last - 1]), used[i][last - 1] = 1;
+      if (u.startVertex == static_cast<int>(v)) eqs.push_back(u.eqs[1]), used_[i][1] = 1;
+      if (u.endVertex == static_cast<int>(v)) eqs.push_back(u.eqs[last - 1]), used_[i][last - 1] = 1;
     }
     if (eqs.empty()) continue;
     VertexSystemReport report;
     report.vertex = static_cast<int>(v);
     report.equations = static_cast<int>(eqs.size());
     std::vector<int> columns;
-    const Eigen::MatrixXd M = solveStage(x, eqs, &columns);
+    const Eigen::MatrixXd M = solveStage(x_, eqs, &columns);
     report.twists = static_cast<int>(columns.size());
-    const bool closed = !net.vertices()[v].onBoundary;
+    const bool closed = !net_.vertices()[v].onBoundary;
     if (closed && M.rows() == M.cols() && M.rows() > 0) {
       double hadamard = 1;
       for (int r = 0; r < M.rows(); ++r) hadamard *= M.row(r).norm();
@@ -507,30 +569,48 @@ BezierSurfaceData buildBezierSurface(const Network &network, bool g1) {
       report.branch = std::abs(report.determinant) < 1e-9 ? VertexSystemReport::Branch::Singular
                                                           : VertexSystemReport::Branch::Regular;
     }
-    for (const Equation &e : eqs) report.residual = std::max(report.residual, norm(x.residual(e)) / diagonal);
-    data.vertexSystems.push_back(report);
+    for (const Equation &e : eqs) report.residual = std::max(report.residual, norm(x_.residual(e)) / diagonal);
+    data_.vertexSystems.push_back(report);
   }
-  // 6. Edge systems: T-junction sides first (they settle the sub-faces' rows
-  //    and the twists at the T), then every other edge.
+}
+
+/// Step 6: the edge systems — T-junction sides first (they settle the
+/// sub-faces' rows and the twists at the T), then every other edge.
+void BezierConstruction::solveEdgeSystems() {
   auto edgeStage = [&](size_t i, const std::vector<Equation> &extra) {
     std::vector<Equation> eqs = extra;
-    for (size_t k = 1; k + 1 < units[i].eqs.size(); ++k)
-      if (!used[i][k]) eqs.push_back(units[i].eqs[k]), used[i][k] = 1;
-    solveStage(x, eqs);
+    for (size_t k = 1; k + 1 < units_[i].eqs.size(); ++k)
+      if (!used_[i][k]) eqs.push_back(units_[i].eqs[k]), used_[i][k] = 1;
+    solveStage(x_, eqs);
   };
-  for (size_t i = 0; i < units.size(); ++i)
-    if (!units[i].pins.empty()) edgeStage(i, units[i].pins);
-  for (size_t i = 0; i < units.size(); ++i)
-    if (units[i].pins.empty()) edgeStage(i, {});
+  for (size_t i = 0; i < units_.size(); ++i)
+    if (!units_[i].pins.empty()) edgeStage(i, units_[i].pins);
+  for (size_t i = 0; i < units_.size(); ++i)
+    if (units_[i].pins.empty()) edgeStage(i, {});
+}
 
-  // 7. Every equation, k = 0 … a + 5, and the pins: how exactly G¹ holds.
-  for (const Unit &u : units)
-    for (const Equation &e : u.eqs) data.maxEquationResidual = std::max(data.maxEquationResidual, norm(x.residual(e)) / diagonal);
-  for (const Unit &u : units)
-    for (const Equation &e : u.pins) data.maxEquationResidual = std::max(data.maxEquationResidual, norm(x.residual(e)) / diagonal);
-  for (int f = 0; f < faceCount; ++f)
+/// Step 7: every equation, k = 0 … a + 5, and the pins: how exactly G¹
+/// holds; then the solved interior cells into the control nets.
+void BezierConstruction::finish() {
+  const double diagonal = net_.diagonal();
+  for (const Unit &u : units_) {
+    for (const Equation &e : u.eqs)
+      data_.maxEquationResidual = std::max(data_.maxEquationResidual, norm(x_.residual(e)) / diagonal);
+    for (const Equation &e : u.pins)
+      data_.maxEquationResidual = std::max(data_.maxEquationResidual, norm(x_.residual(e)) / diagonal);
+  }
+  for (int f = 0; f < faceCount_; ++f)
     for (int i = 1; i < 5; ++i)
-      for (int j = 1; j < 5; ++j) data.patches[f].net[i][j] = x.eval(grid[f][i][j]);
+      for (int j = 1; j < 5; ++j) data_.patches[f].net[i][j] = x_.eval(grid_[f][i][j]);
+}
+
+} // namespace
+
+BezierSurfaceData buildBezierSurface(const Network &network, bool g1) {
+  BezierSurfaceData data = constructionFor(network, g1);
+  BezierConstruction construction(data);
+  construction.startFromCoonsPatches();
+  if (g1) construction.build();
   return data;
 }
 
