@@ -161,6 +161,7 @@ std::optional<Arguments> parseArguments(int argc, char **argv) {
 int run(const Arguments &arguments) {
   std::vector<std::string> names = arguments.only.empty() ? curvenet::figures::tableNames() : arguments.only;
   const std::vector<std::string> known = curvenet::figures::tableNames();
+  curvenet::figures::TableMaker tables(arguments.repository);
   std::vector<Document> documents = readDocuments(arguments.repository);
   const std::vector<Block> blocks = findBlocks(documents);
   for (const Block &block : blocks)
@@ -169,7 +170,7 @@ int run(const Arguments &arguments) {
   if (!arguments.check && !arguments.update) {
     for (const std::string &name : names) {
       std::printf("<!-- figures:%s -->\n", name.c_str());
-      for (const std::string &line : curvenet::figures::computeTable(name, arguments.repository).lines)
+      for (const std::string &line : tables.compute(name).lines)
         std::printf("%s\n", line.c_str());
       std::printf("<!-- /figures -->\n\n");
     }
@@ -178,7 +179,7 @@ int run(const Arguments &arguments) {
   bool differs = false;
   std::map<Document *, std::vector<std::pair<Block, std::vector<std::string>>>> rewrites;
   for (const std::string &name : names) {
-    const Table table = curvenet::figures::computeTable(name, arguments.repository);
+    const Table table = tables.compute(name);
     bool shown = false;
     for (const Block &block : blocks) {
       if (block.name != name) continue;

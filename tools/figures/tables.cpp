@@ -66,14 +66,18 @@ CheckFigures checkFigures(const Surface &surface) {
           measureReferenceDeviation(surface, kCheckResolution), surface.foldedFaces()};
 }
 
-/// The analytic built-ins and the transfinite schemes, each measured once
-/// (the continuity table and the headline share them).
-const CheckFigures &analyticFigures(const std::string &network, Scheme scheme) {
-  static std::map<std::pair<std::string, Scheme>, CheckFigures> measured;
-  auto [it, inserted] = measured.try_emplace({network, scheme});
-  if (inserted) it->second = checkFigures(Surface::build(builtin(network), {scheme}));
-  return it->second;
-}
+/// The check figures of built-in surfaces, each measured once.
+class AnalyticFigures {
+public:
+  const CheckFigures &of(const std::string &network, Scheme scheme) {
+    auto [it, inserted] = measured_.try_emplace({network, scheme});
+    if (inserted) it->second = checkFigures(Surface::build(builtin(network), {scheme}));
+    return it->second;
+  }
+
+private:
+  std::map<std::pair<std::string, Scheme>, CheckFigures> measured_;
+};
 
 const std::vector<std::string> kAnalyticBuiltins = {"pentagon", "sphere-dodecahedron",
                                                     "ellipsoid-truncated-icosahedron", "torus-mixed",
@@ -94,13 +98,13 @@ std::vector<std::string> builtinsTable() {
   return lines;
 }
 
-std::vector<std::string> continuityTable() {
+std::vector<std::string> continuityTable(AnalyticFigures &figures) {
   std::vector<std::string> lines = {header({"network", "scheme", "position gap", "max normal angle (°)",
                                             "max curvature jump", "boundary", "reference max", "reference mean",
                                             "folded faces"})};
   for (const std::string &network : kAnalyticBuiltins)
     for (Scheme scheme : kTransfiniteSchemes) {
-      const CheckFigures &f = analyticFigures(network, scheme);
+      const CheckFigures &f = figures.of(network, scheme);
       const bool shared = f.continuity.sharedSegments > 0;
       lines.push_back(row({code(network), code(schemeName(scheme)), sci(f.continuity.maxPositionGap),
                            sci(f.continuity.maxNormalAngleDeg), shared ? sci(f.jump.maxJump) : "—",
@@ -260,10 +264,10 @@ std::vector<std::string> formatExampleTable(const std::filesystem::path &reposit
 }
 
 /// The deterministic rows of README's headline table, keyed by their first cell.
-std::vector<std::string> headlineRows() {
+std::vector<std::string> headlineRows(AnalyticFigures &figures) {
   const std::string network = defaultBuiltinName();
-  const CheckFigures &g1 = analyticFigures(network, Scheme::GregoryG1);
-  const CheckFigures &g2 = analyticFigures(network, Scheme::GregoryG2);
+  const CheckFigures &g1 = figures.of(network, Scheme::GregoryG1);
+  const CheckFigures &g2 = figures.of(network, Scheme::GregoryG2);
   const std::string check = "`curvenet check builtin:" + network + " --scheme ";
   return {row({"G¹: largest normal angle across an edge", sci(g1.continuity.maxNormalAngleDeg) + "°",
                check + "gregory-g1`"}),
@@ -283,17 +287,27 @@ std::vector<std::string> tableNames() {
           "approximation", "format-example"};
 }
 
-Table computeTable(const std::string &name, const std::filesystem::path &repository) {
+struct TableMaker::Measured {
+  AnalyticFigures analytic;
+};
+
+TableMaker::TableMaker(std::filesystem::path repository)
+    : repository_(std::move(repository)), measured_(std::make_unique<Measured>()) {}
+
+TableMaker::~TableMaker() = default;
+
+Table TableMaker::compute(const std::string &name) {
+  AnalyticFigures &analytic = measured_->analytic;
   const std::map<std::string, std::function<std::vector<std::string>()>> tables = {
-      {"headline", headlineRows},
+      {"headline", [&] { return headlineRows(analytic); }},
       {"builtins", builtinsTable},
-      {"continuity", continuityTable},
+      {"continuity", [&] { return continuityTable(analytic); }},
       {"bezier", bezierTable},
       {"edge-curvature", edgeCurvatureTable},
       {"masters", mastersTable},
       {"connection-curves", connectionCurvesTable},
       {"approximation", approximationTable},
-      {"format-example", [&] { return formatExampleTable(repository); }}};
+      {"format-example", [&] { return formatExampleTable(repository_); }}};
   const auto it = tables.find(name);
   if (it == tables.end()) throw std::runtime_error("no table named \"" + name + "\"");
   Table table{name, name == "headline", {}};

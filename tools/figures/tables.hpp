@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -22,8 +23,21 @@ struct Table {
 /// The names of every table, in the order the documents first show them.
 std::vector<std::string> tableNames();
 
-/// Computes the table `name` (one of tableNames()). `repository` is the
-/// source tree: docs/network-format.md's example is measured as it stands there.
-Table computeTable(const std::string &name, const std::filesystem::path &repository);
+/// Computes tables; surfaces measured for one table are kept for the next
+/// (the continuity table and the headline share them).
+class TableMaker {
+public:
+  /// `repository` is the source tree: docs/network-format.md's example is
+  /// measured as it stands there.
+  explicit TableMaker(std::filesystem::path repository);
+  ~TableMaker();
+  /// The table `name` (one of tableNames()).
+  Table compute(const std::string &name);
+
+private:
+  struct Measured;
+  std::filesystem::path repository_;
+  std::unique_ptr<Measured> measured_;
+};
 
 } // namespace curvenet::figures

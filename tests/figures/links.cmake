@@ -1,0 +1,38 @@
+# Every relative link of the documents resolves to a file inside the source
+# tree: nothing points outside the repository (a clone has nothing there),
+# and no link is left dangling by a rename. Links to other sites (http…) and
+# anchors within a document are not followed.
+file(GLOB documents ${SOURCE_DIR}/README.md ${SOURCE_DIR}/docs/*.md ${SOURCE_DIR}/bench/README.md
+     ${SOURCE_DIR}/tests/fuzz/README.md)
+get_filename_component(root "${SOURCE_DIR}" REALPATH)
+set(broken "")
+set(count 0)
+foreach(document IN LISTS documents)
+  file(READ ${document} text)
+  # Square brackets and semicolons mean something to CMake lists: out of the way first.
+  string(REPLACE "[" "<" text "${text}")
+  string(REPLACE "]" ">" text "${text}")
+  string(REPLACE ";" "," text "${text}")
+  get_filename_component(folder ${document} DIRECTORY)
+  string(REGEX MATCHALL ">\\([^)# ]+[^) ]*\\)" links "${text}")
+  foreach(link IN LISTS links)
+    string(REGEX REPLACE "^>\\(([^)#]*).*\\)$" "\\1" target "${link}")
+    if(target MATCHES "^[a-z]+:")
+      continue()
+    endif()
+    math(EXPR count "${count} + 1")
+    get_filename_component(resolved "${folder}/${target}" REALPATH)
+    string(FIND "${resolved}/" "${root}/" inside)
+    if(NOT inside EQUAL 0 OR NOT EXISTS "${resolved}")
+      file(RELATIVE_PATH shown ${SOURCE_DIR} ${document})
+      string(APPEND broken "  ${shown}: ${target}\n")
+    endif()
+  endforeach()
+endforeach()
+if(count EQUAL 0)
+  message(FATAL_ERROR "no relative links found: the link pattern no longer matches the documents")
+endif()
+if(NOT broken STREQUAL "")
+  message(FATAL_ERROR "links that leave the repository or lead nowhere:\n${broken}")
+endif()
+message(STATUS "${count} relative links, all inside the repository")
