@@ -1,5 +1,5 @@
 // The transversal-curvature sources of gregory-g2 compared on the default
-// network (paper 000 Sec. 3.3 and 5.3): build time of the whole surface and
+// network ([SV14] Sec. 3.3 and 5.3): build time of the whole surface and
 // its deviation from the network's reference surface.
 //   EdgeCurvature/<source>: counters max_dev_pct and mean_dev_pct (all vertices
 //   of the resolution-32 tessellation vs the reference, percent of the

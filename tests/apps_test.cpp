@@ -1,4 +1,4 @@
-// Applications of G² ribbons (paper 000 Sec. 5): mesh approximation (5.3).
+// Applications of G² ribbons ([SV14] Sec. 5): mesh approximation (5.3).
 //
 // Test meshes are triangulations of the analytic reference surfaces of the
 // built-ins (every vertex on the surface), and the curve networks are the
@@ -181,7 +181,7 @@ TEST(MeshApproximation, PolylinesAreFittedByCubics) {
   EXPECT_EQ(a.vertices().size(), b.vertices().size());
 }
 
-// Paper 000 Fig. 10 on the two networks the issue names. G² must be curvature
+// [SV14] Fig. 10 on the two networks the issue names. G² must be curvature
 // continuous (the mesh curvature is shared by both faces of every edge) and
 // deviate less from the mesh than G¹. Independent check: building the same
 // surfaces from the analytic reference instead of the mesh gives nearly the
@@ -281,7 +281,7 @@ TEST(MeshApproximation, CommandLine) {
   EXPECT_NE(bad.err.find("missing.obj"), std::string::npos);
 }
 
-// Master–slave with named masters (paper 000 Sec. 5.1): on torus-mixed every
+// Master–slave with named masters ([SV14] Sec. 5.1): on torus-mixed every
 // third curve names the face that is NOT the default master (faces[1]); with
 // the direct source elsewhere, gregory-g2 must (1) stay curvature continuous
 // everywhere, and (2) on each named edge carry exactly the cross curvature of
@@ -400,7 +400,7 @@ TEST(MasterSlave, KeptG1MasterFacesGiveTheirCurvatureAwayFromVertices) {
   EXPECT_LE(continuity.maxNormalAngleDeg, 1e-6);
 }
 
-// Connection curves (paper 000 Sec. 5.2). concave-L is one 6-sided loop with
+// Connection curves ([SV14] Sec. 5.2). concave-L is one 6-sided loop with
 // a concave corner: as given, every transfinite scheme folds over it; split
 // by the inserted connection curve, no scheme folds, gregory-g2 is curvature
 // continuous across the hidden seam (averaged G¹ curvatures) while
@@ -611,7 +611,7 @@ std::array<double, 3> filletDeviations(const Network &net, const Surface &surfac
 } // namespace
 
 
-// Master–slave vertex blend (paper 000 Sec. 5.1, Fig. 8): three cylindrical
+// Master–slave vertex blend ([SV14] Sec. 5.1, Fig. 8): three cylindrical
 // fillets of a box corner are the masters, the 6-sided setback blend the
 // slave. gregory-g2 must join the slave to every master with a curvature jump
 // ≤ 1e-4 (tangent planes to 1e-6°, no fold), the slave carrying the cross

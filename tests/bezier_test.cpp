@@ -1,4 +1,4 @@
-// Bézier schemes of paper 003 (bezier-g1, coons-c0): G¹ across every edge of
+// Bézier schemes of [OSK11] (bezier-g1, coons-c0): G¹ across every edge of
 // the four T-junction built-ins, the Coons baseline clearly worse, boundary
 // curves reproduced, the vertex systems' branches on hand-made networks, and
 // a 2-manifold mesh from the tessellator.
@@ -140,7 +140,7 @@ const bezier::VertexSystemReport &reportAt(const bezier::BezierSurfaceData &data
 
 TEST(VertexSystem, ValenceThreeIsRegularAndSolvedByLeastSquares) {
   // Three quads around the cube corner (1, 1, 1) projected on the sphere: a
-  // closed circulant system with det ≠ 0 (paper 003 table, case 3-a).
+  // closed circulant system with det ≠ 0 ([OSK11] table, case 3-a).
   const std::vector<Vec3> nodes = {normalized({1, 1, 1}), normalized({1, 1, 0.1}), normalized({1, 0.05, 0.1}),
                                    normalized({1, 0.05, 1}), normalized({0.2, 0.05, 1}), normalized({0.2, 1, 1}),
                                    normalized({0.2, 1, 0.1})};

@@ -1,4 +1,4 @@
-// End-to-end tests of the `curvenet` program (DESIGN.md §6): the JSON
+// End-to-end tests of the `curvenet` program (docs/design.md §6): the JSON
 // report's figures, mesh output, and clear failures on bad input that leave
 // no output file behind.
 #include <gtest/gtest.h>

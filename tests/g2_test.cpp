@@ -1,4 +1,4 @@
-// G² surfaces (paper 000): vertex curvature fit on the built-ins, parabolic
+// G² surfaces ([SV14]): vertex curvature fit on the built-ins, parabolic
 // ribbons, the gregory-g2 scheme's continuity and accuracy against the
 // reference surfaces, and the curvature-jump figure itself.
 #include <gtest/gtest.h>
@@ -130,7 +130,7 @@ TEST(VertexCurvature, FitRecoversTheAnalyticTensorOnTheBuiltins) {
   }
 }
 
-// DESIGN.md §3 check: the curve d ↦ P + dT + ½d²C has normal curvature κ_T,
+// docs/design.md §3 check: the curve d ↦ P + dT + ½d²C has normal curvature κ_T,
 // the normal curvature of the intended surface in the direction of T. With
 // the reference fence and κ_D the intended surface is the reference itself.
 TEST(ParabolicRibbon, CrossCurvatureIsTheSurfaceCurvatureAlongT) {
@@ -217,7 +217,7 @@ INSTANTIATE_TEST_SUITE_P(All, G2Builtin, ::testing::ValuesIn(builtinNames()),
 // Done-when of the issue: G¹ patches jump in curvature at least 10x more
 // than G² ones. With reference curvature G² deviates less from the reference
 // than G¹ on every built-in, and at most half as much on the two named ones
-// (paper 000 Fig. 10: 2–4x). Measured: ellipsoid 0.55% vs 1.60%, torus 0.82%
+// ([SV14] Fig. 10: 2–4x). Measured: ellipsoid 0.55% vs 1.60%, torus 0.82%
 // vs 2.54% of the diagonal. With linear α, β in the parabolic ribbons the
 // twist mismatch at the corners left G² at 1.07% / 1.74% (ratio ≈ 0.67).
 // The G¹ figure comes from differenced derivatives: halving the step must

@@ -456,7 +456,7 @@ std::vector<Vec2> hardSweepPoints(int n, const SideFrame &side, std::mt19937_64 
 }
 
 TEST(Kernels, CompositeRibbonAgreesAcrossWidthsAndWithDualArithmetic) {
-  // Reference: the CR formula (paper 002: three ribbons per side, Coons
+  // Reference: the CR formula ([VSR]: three ribbons per side, Coons
   // blending, two Gregory corrections) in Dual arithmetic with the engine's
   // scalar gregoryCorrection. Some samples sit at a side's start corner
   // (s = d = 0, where W takes (a + b) / 2) and some have a zero blend (the

@@ -1,6 +1,6 @@
 // G¹ surfaces (issue: normal fences, linear ribbons, Gregory and Composite
 // Ribbon patches, watertight tessellation). One fixture runs every built-in
-// through every G¹ scheme and asserts the continuity figures of DESIGN.md §5,
+// through every G¹ scheme and asserts the continuity figures of docs/design.md §5,
 // boundary reproduction and a manifold mesh; further tests check planar
 // reproduction, exact derivatives against central differences, the Coons
 // boundary correspondence of 4-sided patches and thread-independent output.

@@ -1,5 +1,5 @@
 // libFuzzer harness: the triangle-mesh readers (OBJ, and OFF when the text
-// starts with "OFF"), then mesh approximation (paper 000 Sec. 5.3) of the
+// starts with "OFF"), then mesh approximation ([SV14] Sec. 5.3) of the
 // pentagon built-in's curves, as polylines, over the mesh read: the mesh
 // becomes the reference surface (local quadric fits), both surfaces are
 // built and every mesh vertex measured against them. The seeds are the

@@ -1,6 +1,6 @@
 // curvenet approximate MESH NETWORK -o FILE [--report FILE.json] — G¹ and G²
 // surfaces fitted to a triangle mesh over a curve network drawn on it
-// (paper 000 Sec. 5.3, Fig. 10; curvenet/approximation.hpp).
+// ([SV14] Sec. 5.3, Fig. 10; curvenet/approximation.hpp).
 #include <cstdio>
 #include <filesystem>
 #include <string_view>
@@ -36,7 +36,7 @@ Command addApproximateCommand(CLI::App &app) {
     bool quiet = false;
   };
   auto o = std::make_shared<Options>();
-  CLI::App *sub = app.add_subcommand("approximate", "G1/G2 surfaces fitted to a triangle mesh (paper 000 Fig. 10)");
+  CLI::App *sub = app.add_subcommand("approximate", "G1/G2 surfaces fitted to a triangle mesh (Salvi and Varady 2014, Fig. 10)");
   sub->add_option("MESH", o->mesh,
                   "triangle mesh (.obj, .off), or builtin:NAME = that built-in's reference surface triangulated "
                   "(edges of --edge x its diagonal), the analytic form forgotten")
@@ -100,7 +100,7 @@ Command addApproximateCommand(CLI::App &app) {
                         "the mesh\n",
                         mesh.positions.size(), mesh.triangles.size(), result.network.faces().size(),
                         result.network.segments().size(), result.curveDistance);
-            std::printf("deviation of the mesh vertices, relative to the bounding-box diagonal (paper 000 Fig. 10):\n");
+            std::printf("deviation of the mesh vertices, relative to the bounding-box diagonal (Salvi and Varady 2014, Fig. 10):\n");
             std::printf("  %-28s %11s %11s %11s %11s %14s\n", "surface", "min", "max", "max |d|", "mean |d|",
                         "curv. jump");
             auto row = [](const char *name, const DeviationFigures &d, double jump) {

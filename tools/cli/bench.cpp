@@ -1,6 +1,6 @@
 // curvenet bench [INPUT] [--resolution R] [--points P] [--threads T] [--json]
 //
-// The G¹-vs-G² cost comparison in the form of paper 000 Table 1, measured in
+// The G¹-vs-G² cost comparison in the form of [SV14] Table 1, measured in
 // one run: per scheme the ribbon/fence construction time, the pointwise
 // evaluation of P random domain points, the evaluation of every face
 // interior's samples at resolution R through evaluation plans
@@ -144,7 +144,7 @@ Command addBenchCommand(CLI::App &app) {
     bool json = false, quiet = false;
   };
   auto o = std::make_shared<Options>();
-  CLI::App *sub = app.add_subcommand("bench", "G1 vs G2 evaluation cost (paper 000 Table 1 form)");
+  CLI::App *sub = app.add_subcommand("bench", "G1 vs G2 evaluation cost (Salvi and Varady 2014, Table 1 form)");
   sub->add_option("INPUT", o->input, "network file (.json, .lop) or builtin:NAME (default builtin:pentagon)");
   sub->add_option("--resolution", o->resolution, "tessellation resolution")->check(CLI::Range(1, 4096));
   sub->add_option("--points", o->points, "random points for the pointwise evaluation")->check(CLI::Range(1, 10000000));

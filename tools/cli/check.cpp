@@ -75,7 +75,7 @@ Command addCheckCommand(CLI::App &app) {
             warnAboutFolds(surface);
             addSurfaceReport(report, surface, options->samples, options->resolution);
             if (scheme == Scheme::BezierG1) {
-              // Paper 003's comparison: the C⁰ Coons patches of the same network beside the G¹ figures.
+              // [OSK11]'s comparison: the C⁰ Coons patches of the same network beside the G¹ figures.
               nlohmann::json coons;
               addSurfaceReport(coons, Surface::build(network, {Scheme::CoonsC0}), options->samples,
                                options->resolution);

@@ -1,4 +1,4 @@
-// The subcommands of the curvenet program (DESIGN.md §6). Each registers its
+// The subcommands of the curvenet program (docs/design.md §6). Each registers its
 // options on the CLI11 app and returns the process exit code when run.
 #pragma once
 

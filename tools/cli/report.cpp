@@ -38,7 +38,7 @@ nlohmann::json networkReport(const Network &network, const std::string &input) {
 
 namespace {
 
-/// Faces split by connection curves (paper 000 Sec. 5.2) are the user's one
+/// Faces split by connection curves ([SV14] Sec. 5.2) are the user's one
 /// face: each composite lists its patches, its hidden seams (the connection
 /// segments) and the curvature jump across them.
 void addCompositeFaces(nlohmann::json &report, const Surface &surface, const CurvatureJumpReport &jump) {
@@ -110,7 +110,7 @@ void addSurfaceReport(nlohmann::json &report, const Surface &surface, int sample
                         "of the exact first derivatives, step 1e-5") +
       "; 17 points per shared segment, 1% left out at each end; |k_A - k_B| / max(|k_A|, |k_B|, 1/diagonal)";
   addCompositeFaces(report, surface, jump);
-  // Master edges (paper 000 Sec. 5.1): the jump from each slave to its master.
+  // Master edges ([SV14] Sec. 5.1): the jump from each slave to its master.
   const std::vector<MasterEdgeJump> masters = masterEdgeJumps(surface, jump);
   if (!masters.empty()) {
     nlohmann::json list = nlohmann::json::array();

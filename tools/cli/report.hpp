@@ -1,4 +1,4 @@
-// The JSON report shared by `check` and `demo` (key names: DESIGN.md §6).
+// The JSON report shared by `check` and `demo` (key names: docs/design.md §6).
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -15,7 +15,7 @@ namespace curvenet::cli {
 /// independent curves and kind.
 nlohmann::json networkReport(const Network &network, const std::string &input);
 
-/// Adds the surface figures of DESIGN.md §5 for one scheme: `scheme`,
+/// Adds the surface figures of docs/design.md §5 for one scheme: `scheme`,
 /// `continuity.*` (sampled at `samplesPerSegment` points per segment) and,
 /// when the network has a reference surface, `reference.*` (measured at the
 /// vertices of a tessellation at `resolution`); when edges name a master

@@ -1,4 +1,4 @@
-// Scheme names on the command line (DESIGN.md §6).
+// Scheme names on the command line (docs/design.md §6).
 #include <cstdio>
 
 #include "commands.hpp"

@@ -113,7 +113,7 @@ Command addDemoCommand(CLI::App &app) {
                 printPictureLine(path, picture);
               }
             }
-            // Paper 003's pictures: C⁰ Coons vs G¹ Bézier patches over a
+            // [OSK11]'s pictures: C⁰ Coons vs G¹ Bézier patches over a
             // network with a T-junction, reflection lines side by side.
             {
               const std::string tName = "hemisphere-tjunction";

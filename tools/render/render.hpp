@@ -1,4 +1,4 @@
-// render.hpp — verification pictures of a tessellated surface (DESIGN.md §5).
+// render.hpp — verification pictures of a tessellated surface (docs/design.md §5).
 //
 // renderMesh casts one primary ray per sample through an Embree 3 scene built
 // on the mesh (one shared vertex buffer, the mesh's own index array), over

@@ -1,5 +1,5 @@
 // curvenet/approximation.hpp — transfinite surfaces fitted to a triangle mesh
-// (paper 000 Sec. 5.3, Fig. 10).
+// ([SV14] Sec. 5.3, Fig. 10).
 //
 // Input: a triangle mesh and a curve network drawn on it. Curves given as
 // polylines — degree-1 B-splines in the native format, one point per knot —

@@ -5,11 +5,11 @@
 // curves: each carries its ReferenceSurface. Curves are B-spline fits of curves
 // lying on the surface, accurate to 1e-8 of the bounding-box diagonal in
 // position and 1e-5 relative in normal curvature — except the cubic Bézier
-// networks of paper 003 (hemisphere-tjunction, tjunction-surrounded,
+// networks of [OSK11] (hemisphere-tjunction, tjunction-surrounded,
 // tjunction-vertex, hull-like), whose curves are cubic arcs on the sphere or
 // ellipsoid (ends and end tangents exact, ~1e-4 of the radius between) and
 // whose vertex facts are not listed — and except `setback-vertex-blend`
-// (paper 000 Sec. 5.1, Fig. 8), a box corner rounded by three cylindrical
+// ([SV14] Sec. 5.1, Fig. 8), a box corner rounded by three cylindrical
 // fillets (faces 0–2, exact rational arcs and straight lines) that a 6-sided
 // vertex blend (face 3) joins: the blend is what the network defines, so
 // this built-in carries no reference surface. Its three fillet end arcs name

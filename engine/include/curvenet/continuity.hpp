@@ -1,4 +1,4 @@
-// curvenet/continuity.hpp — the quality figures of DESIGN.md §5 for a built
+// curvenet/continuity.hpp — the quality figures of docs/design.md §5 for a built
 // Surface: how well neighbouring patches join, how exactly each patch keeps
 // its boundary curves, and how far the surface lies from a known reference.
 //

@@ -1,11 +1,11 @@
 // curvenet/curvature_jump.hpp — curvature continuity across shared edges.
 //
-// DESIGN.md §5 "curvature jump": on every segment shared by two faces, at the
+// docs/design.md §5 "curvature jump": on every segment shared by two faces, at the
 // same curve parameters from both sides, the normal curvatures κ_A, κ_B of
 // the two patches in the common transversal direction N × P' (N the first
 // face's normal, P' the segment tangent) are compared as
 //   |κ_A − κ_B| / max(|κ_A|, |κ_B|, 1 / diagonal).
-// By the Linkage Curve Theorem (paper 000 Sec. 3) two patches tangent along
+// By the Linkage Curve Theorem ([SV14] Sec. 3) two patches tangent along
 // the edge are curvature continuous iff this vanishes all along it.
 //
 // Derivative method: Surface::evaluateSecondOrder — exact (hyper-dual
@@ -57,7 +57,7 @@ struct CurvatureJumpReport {
 /// InputError for options out of range.
 CurvatureJumpReport measureCurvatureJump(const Surface &surface, const CurvatureJumpOptions &options = {});
 
-/// The curvature jump across one master edge (paper 000 Sec. 5.1): a shared
+/// The curvature jump across one master edge ([SV14] Sec. 5.1): a shared
 /// segment whose curve names a master face (Segment::masterFace).
 struct MasterEdgeJump {
   int segment = -1;    ///< index into Network::segments()

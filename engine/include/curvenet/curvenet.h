@@ -270,7 +270,7 @@ curvenet_status_code curvenet_model_write_mesh(const curvenet_model *model, cons
 /* ---- Editing ----------------------------------------------------------- */
 
 /* Replaces curve `curve` and rebuilds network and surfaces (cost: a full
- * rebuild, linear in the segments, whatever moved; figures in the README).
+ * rebuild, linear in the segments, whatever moved; figures: SurfaceEdit in bench/README.md).
  * Clears the kept mesh. Face and curve numbers stay. */
 curvenet_status_code curvenet_model_set_curve(curvenet_model *model, int curve, const curvenet_curve *replacement,
                                               curvenet_status *status);

@@ -37,7 +37,9 @@
 // evaluation and tessellation use TBB internally (BatchOptions::threads,
 // TessellationOptions::threads).
 //
-// A C interface over the same calls is in curvenet/curvenet.h.
+// A C interface over the same calls is in curvenet/curvenet.h. Papers are
+// cited by key ([SV14], [OSK11], [HPS09], …) throughout the headers; the
+// full references are in docs/references.md.
 #pragma once
 
 #include <array>

@@ -1,6 +1,6 @@
 // curvenet/mesh_reference.hpp — a triangle mesh used as the reference surface.
 //
-// Paper 000 Sec. 5.3 approximates a mesh by transfinite patches over a curve
+// [SV14] Sec. 5.3 approximates a mesh by transfinite patches over a curve
 // network drawn on it: the normal fences (G¹) and also the transversal
 // curvatures (G²) along the curves are estimated from the mesh. A
 // MeshReference answers the same question an analytic ReferenceSurface does —

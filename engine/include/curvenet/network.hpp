@@ -51,14 +51,14 @@ struct FaceDescription {
 /// Per-curve settings (the native format's `edges`).
 struct EdgeDescription {
   int curve = -1;
-  /// Master face (paper 000 Sec. 5.1): every piece of the curve borders this
+  /// Master face ([SV14] Sec. 5.1): every piece of the curve borders this
   /// face, and gregory-g2 gives the other face of each piece the master's
   /// cross curvature (measured on the master's G¹ patch), whatever the
   /// surface's EdgeCurvature source is elsewhere; the master face itself is
   /// rebuilt as a G² patch or kept as that G¹ patch (MasterFaces). -1: no
   /// master.
   int masterFace = -1;
-  /// A connection curve (paper 000 Sec. 5.2): an inner seam of a composite
+  /// A connection curve ([SV14] Sec. 5.2): an inner seam of a composite
   /// face, hidden from the user. gregory-g2 averages the two G¹ patches'
   /// cross curvatures on it (EdgeCurvature::Averaging) whatever the surface's
   /// source is elsewhere, so the seam is curvature continuous.
@@ -80,7 +80,7 @@ struct NetworkDescription {
   bool connectionCurves = true;
 };
 
-/// Connection curves (paper 000 Sec. 5.2). A loop with a concave corner
+/// Connection curves ([SV14] Sec. 5.2). A loop with a concave corner
 /// cannot be mapped from a regular n-gon without folding, and a face with a
 /// hole has no single loop; both are split into convex sub-faces by curves
 /// that the user never sees:
@@ -114,7 +114,7 @@ struct NetworkDescription {
 /// references). Cost: a few curve evaluations per side.
 NetworkDescription insertConnectionCurves(const NetworkDescription &description, const std::string &file = {});
 
-/// Vertex kinds by paper 000 Fig. 1 (n = independent curves).
+/// Vertex kinds by [SV14] Fig. 1 (n = independent curves).
 enum class VertexKind {
   Corner,  ///< valence 2, two independent curves (a loop corner, e.g. on the boundary)
   Smooth,  ///< valence 2, one curve passing through (no corner in any face)

@@ -36,7 +36,7 @@ struct ReferenceSurface {
     Ellipsoid, ///< (x/a)² + (y/b)² + (z/c)² = 1 around `center`, a,b,c = size
     Torus,     ///< ring radius R = size.x, tube radius r = size.y, axis z, around `center`
     Graph,     ///< z = a x² + b y² over the xy-plane, a = size.x, b = size.y, shifted by `center`
-    /// A triangle mesh (paper 000 Sec. 5.3): closest points on its triangles,
+    /// A triangle mesh ([SV14] Sec. 5.3): closest points on its triangles,
     /// normals and curvatures by a local quadric fit (curvenet/mesh_reference.hpp).
     /// `mesh` must be set; center and size are unused. Never read from or
     /// written to a network file (the mesh is a separate input).

@@ -6,24 +6,24 @@
 // the surface, with exact first derivatives.
 //
 // Schemes
-//  * gregory-g1 — Gregory corner-based patch (paper 000 eqs. 16–18 with m = 2,
+//  * gregory-g1 — Gregory corner-based patch ([SV14] eqs. 16–18 with m = 2,
 //    linear ribbons): corner interpolants I = R_{i−1} + R_i − Q with the
-//    rational-twist correction patch Q of DESIGN.md §3; sweeplines radial
+//    rational-twist correction patch Q of docs/design.md §3; sweeplines radial
 //    [CG84] or Hermite (eq. 20).
-//  * gregory-g2 — the G² Gregory patch of paper 000 Sec. 4: parabolic ribbons
+//  * gregory-g2 — the G² Gregory patch of [SV14] Sec. 4: parabolic ribbons
 //    R = P + dT + ½d²C (eq. 15) over curvature-compatible normal fences
 //    (eqs. 13–14), corner interpolants (eq. 17), blends with m = 3, the
 //    Hermite sweepline (eq. 20, cubic or quintic) and the nine-term rational
-//    correction patch (eq. 22, DESIGN.md §3). Adjacent patches share the
+//    correction patch (eq. 22, docs/design.md §3). Adjacent patches share the
 //    normal fence and the transversal curvature of every edge, so they are
 //    curvature continuous along it (Linkage Curve Theorem, App. B).
-//  * composite-ribbon — the CR patch of paper 002: γ(d) = d/(2d+1) ribbons,
+//  * composite-ribbon — the CR patch of [VSR]: γ(d) = d/(2d+1) ribbons,
 //    curved ribbons (Coons patches with three sides given), Wachspress
 //    distance parameters, linear-sweep side parameters, S = ½ Σ C_i B_i. Where
 //    the two ribbons at a corner disagree (twist or tangent), the corner
 //    correction patch uses Gregory's rational terms so that G¹ still holds.
 //  * bezier-g1 — G¹ quintic Bézier patches over 4-sided cubic Bézier networks
-//    with T-junctions (paper 003, after Cho, Lee and Kim 2006): Coons-derived
+//    with T-junctions ([OSK11], after Cho, Lee and Kim 2006): Coons-derived
 //    initial nets, vertex and edge G¹ systems, virtual rows across T-junction
 //    sides, three-rectangle subdivision of T-junctions at vertices. See
 //    curvenet/bezier.hpp for the control-net export and edge continuity.
@@ -96,20 +96,20 @@ enum class FenceNormals {
   /// From the curves alone: rotation-minimizing between the vertex tangent
   /// planes (G¹ schemes) or curvature-compatible at both ends (gregory-g2).
   Curves,
-  /// From the network's reference surface (paper 000 Sec. 5.3, mesh
+  /// From the network's reference surface ([SV14] Sec. 5.3, mesh
   /// approximation): normals sampled along each segment, vertex normals too.
   /// InputError when the network has no reference.
   Reference,
 };
 
 /// How gregory-g2 chooses the transversal curvature κ_D(s) of each edge (the
-/// normal curvature in the common direction N × P', paper 000 Sec. 3.3).
+/// normal curvature in the common direction N × P', [SV14] Sec. 3.3).
 /// Every source keeps κ in the curve's own direction equal to the curve's
 /// normal curvature (constraint κ(ω0) = k0) and uses the vertex tensors at the
 /// segment ends. A segment whose curve names a master face
-/// (EdgeDescription::masterFace, paper 000 Sec. 5.1) always takes the master's
+/// (EdgeDescription::masterFace, [SV14] Sec. 5.1) always takes the master's
 /// G¹ patch curvature as MasterSlave does, whichever source is chosen here;
-/// a connection curve (Segment::connection, paper 000 Sec. 5.2) always
+/// a connection curve (Segment::connection, [SV14] Sec. 5.2) always
 /// averages its two G¹ patches as Averaging does.
 enum class EdgeCurvature {
   /// The G¹ patch of the edge's first face (Segment::faces[0]) is the master:
@@ -129,7 +129,7 @@ enum class EdgeCurvature {
 };
 
 /// What gregory-g2 builds over a master face: a face that an edge names as
-/// its master (EdgeDescription::masterFace, paper 000 Sec. 5.1).
+/// its master (EdgeDescription::masterFace, [SV14] Sec. 5.1).
 enum class MasterFaces {
   /// Rebuilt from parabolic ribbons like every other face: the whole surface
   /// is G² patches (a G² patch cannot reproduce a circular cross-section, so
@@ -316,7 +316,7 @@ public:
   Vec3 vertexNormal(int vertex) const;
   double vertexResidualAngle(int vertex) const;
 
-  /// The curvature fitted at vertex v from its curves (paper 000 Sec. 2,
+  /// The curvature fitted at vertex v from its curves ([SV14] Sec. 2,
   /// App. A; computed for every scheme), or for gregory-g2 with the
   /// reference edge curvature the reference surface's tensor.
   VertexCurvatureInfo vertexCurvature(int vertex) const;

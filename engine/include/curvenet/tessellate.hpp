@@ -31,7 +31,7 @@ struct TessellationOptions {
   int threads = 0;
   /// Also fill Mesh::domainPoints (16 bytes more per vertex).
   bool recordDomainPoints = false;
-  /// Evaluate face interiors through cached evaluation plans (DESIGN.md §4):
+  /// Evaluate face interiors through cached evaluation plans (docs/design.md §4):
   /// the geometry-free part of every sample (sweepline roots, blends) is
   /// computed once per (scheme, sides, resolution, sweepline) and shared by
   /// all faces and calls; the patch then costs its ribbon evaluations (from

@@ -1,4 +1,4 @@
-// Surface curvature at the vertices of a network (paper 000 Sec. 2, App. A):
+// Surface curvature at the vertices of a network ([SV14] Sec. 2, App. A):
 // the fit of curvenet/vertex_math.hpp applied to the curves at each vertex.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Mesh approximation (curvenet/approximation.hpp, paper 000 Sec. 5.3).
+// Mesh approximation (curvenet/approximation.hpp, [SV14] Sec. 5.3).
 #include "curvenet/approximation.hpp"
 
 #include <tbb/parallel_for.h>

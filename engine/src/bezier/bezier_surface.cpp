@@ -294,7 +294,7 @@ std::array<double, 2> endValues(const Vec3 &P, const Vec3 &R, const Vec3 &w, con
   if ((A * s - rhs).norm() > 1e-8 * length || !std::isfinite(s(0)))
     throw InputError("", "vertex " + std::to_string(vertex),
                      "the curve tangents there are not coplanar (or two coincide): no G1 surface with these "
-                     "curves unchanged (paper 003, case 4-a)");
+                     "curves unchanged ([OSK11], case 4-a)");
   return {s(0), s(1)};
 }
 
@@ -393,7 +393,7 @@ void BezierConstruction::addTJunctionUnit(int f, int k) {
   if (others != static_cast<int>(side.segments.size()))
     throw InputError("", element, "a T-node side with faces across only part of it is not supported");
   if (side.segments.size() > 2)
-    throw InputError("", element, "more than one T-junction on one side is not supported (paper 003, future work)");
+    throw InputError("", element, "more than one T-junction on one side is not supported ([OSK11], future work)");
   Unit u;
   u.element = element + " (T-junction side)";
   const std::vector<Vec3> q = cubicPoints(side.curve, element);

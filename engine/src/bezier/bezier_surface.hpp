@@ -1,11 +1,11 @@
 // G¹ quintic Bézier patches over 4-sided cubic Bézier networks with
-// T-junctions (paper 003, after Cho, Lee and Kim, CAD 38(6) 2006), and the
+// T-junctions ([OSK11], after Cho, Lee and Kim, CAD 38(6) 2006), and the
 // C⁰ Coons baseline. Engine-private; Surface and curvenet/bezier.hpp use it.
 //
 // Construction, in the paper's order:
 //  1. Initial patches: the bilinearly blended Coons patch of the four cubic
 //     boundaries, which is bicubic, written as a quintic net (exact elevation).
-//  2. Per interior edge, the G¹ condition of paper 003 (4 points in a plane)
+//  2. Per interior edge, the G¹ condition of [OSK11] (4 points in a plane)
 //        (1 − λ(t)) p(t) + λ(t) r(t) = (1 − μ(t)) q_b(t) + μ(t) q_t(t),
 //     p, r the first inner rows of the two patches (degree 5), q the cubic
 //     boundary with q_b, q_t its two degree-2 de Casteljau sub-polygons, λ of
@@ -19,7 +19,7 @@
 //     with minimal change from the Coons twists (complete orthogonal
 //     decomposition). At a 4-valent vertex with two pairs of collinear curves
 //     the circulant matrix is singular (det = Π λ̄ − Π λ = 0) and the system is
-//     solvable only under the condition on μ₁ that paper 003 states; having μ₁
+//     solvable only under the condition on μ₁ that [OSK11] states; having μ₁
 //     as unknowns in the same solve satisfies it.
 //  4. Edge G¹ systems: the remaining equations of each edge in the two edge
 //     points of each patch and the free μ coefficients, again least squares.
@@ -27,7 +27,7 @@
 //     patches on the other side are treated as one virtual patch whose inner
 //     row V(t) spans the whole side; their own rows are V subdivided at the
 //     T parameter c (the auxiliary cross-derivative curve), and V(c) must hit
-//     the first inner control point of the curve ending at the T (paper 003's
+//     the first inner control point of the curve ending at the T ([OSK11]'s
 //     4 × 4 edge system). The curve ending at the T then uses a quadratic λ
 //     with λ₀ = λ₁ (the subdivision fixes λ's value and slope there).
 //  6. T-junction at a vertex (a face whose loop runs straight through one of

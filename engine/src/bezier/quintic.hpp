@@ -1,4 +1,4 @@
-// Tensor-product Bézier patches of degree 5 × 5 (paper 003) and the Bernstein
+// Tensor-product Bézier patches of degree 5 × 5 ([OSK11]) and the Bernstein
 // helpers the G¹ construction needs (products, degree elevation, subdivision).
 #pragma once
 

@@ -52,16 +52,16 @@ SpherePolyhedron pentagonCapOnSphere();
 BuiltinData torusMixed();
 BuiltinData saddleNodes();
 
-// Loops that need connection curves (paper 000 Sec. 5.2), see composite.cpp.
+// Loops that need connection curves ([SV14] Sec. 5.2), see composite.cpp.
 BuiltinData concaveL();
 /// `holeSides` arcs make the hole (the built-in `ring`: 4, each facing an
 /// outer corner).
 BuiltinData ring(int holeSides = 4);
 
-// Master–slave vertex blend (paper 000 Sec. 5.1, Fig. 8), see setback.cpp.
+// Master–slave vertex blend ([SV14] Sec. 5.1, Fig. 8), see setback.cpp.
 BuiltinData setbackVertexBlend();
 
-// Cubic Bézier networks with T-junctions (paper 003), see tjunctions.cpp.
+// Cubic Bézier networks with T-junctions ([OSK11]), see tjunctions.cpp.
 BuiltinData hemisphereTJunction();
 BuiltinData tjunctionSurrounded();
 BuiltinData tjunctionVertex();

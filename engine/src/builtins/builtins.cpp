@@ -36,7 +36,7 @@ const std::vector<Entry> &entries() {
       {{"saddle-nodes", "open network on z = x^2 - y^2 with an X-node, a T-node and a 2-sided lens"},
        [] { return saddleNodes(); }},
       {{"hemisphere-tjunction",
-        "3 cubic Bezier patches on the unit sphere, a T-junction on the boundary curve of the third (paper 003)"},
+        "3 cubic Bezier patches on the unit sphere, a T-junction on the boundary curve of the third ([OSK11])"},
        [] { return hemisphereTJunction(); }},
       {{"tjunction-surrounded", "hemisphere x >= 0 in 6 cubic Bezier patches, the T-junction surrounded by patches"},
        [] { return tjunctionSurrounded(); }},

@@ -1,4 +1,4 @@
-// Built-ins for connection curves (paper 000 Sec. 5.2, Fig. 9): loops that no
+// Built-ins for connection curves ([SV14] Sec. 5.2, Fig. 9): loops that no
 // single n-sided patch spans well, on the elliptic bowl z = 0.25 x² + 0.15 y².
 //
 //  concave-L: one 6-sided L-shaped loop with a concave corner at (0, 0)

@@ -1,4 +1,4 @@
-// Built-in `setback-vertex-blend` (paper 000 Sec. 5.1, Fig. 8): the corner of
+// Built-in `setback-vertex-blend` ([SV14] Sec. 5.1, Fig. 8): the corner of
 // a box, x, y, z ≤ 0, whose three edges are rounded by cylindrical fillets of
 // different radii; the fillets stop short of the corner (the setbacks) and a
 // 6-sided vertex blend fills the gap. The three fillets are the masters, the

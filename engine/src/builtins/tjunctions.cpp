@@ -1,4 +1,4 @@
-// Built-ins of paper 003: cubic Bézier networks of 4-sided faces with
+// Built-ins of [OSK11]: cubic Bézier networks of 4-sided faces with
 // T-junctions, on the unit sphere (hull-like: on an ellipsoid).
 //
 // Every curve is a cubic Bézier approximation of a great-circle arc (a planar

@@ -1,5 +1,5 @@
 // insertConnectionCurves — composite faces for concave loops and holes
-// (paper 000 Sec. 5.2). Works on the description alone (curves and loops),
+// ([SV14] Sec. 5.2). Works on the description alone (curves and loops),
 // before any topology exists, so Network::build can call it first.
 #include <algorithm>
 #include <array>

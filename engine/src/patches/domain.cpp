@@ -259,7 +259,7 @@ Dual RegularDomain::linearSweepSideParameter(int i, Dual u, Dual v) const {
 
 void RegularDomain::wachspressDistances(Dual u, Dual v, std::span<Dual> distances) const {
   // Product form of the Wachspress weights: w_i ∏_j A_j = C_i ∏_{j ≠ i−1, i} A_j,
-  // which stays finite on the sides where some A_j vanish (paper 002 Sec. 2.3).
+  // which stays finite on the sides where some A_j vanish ([VSR] Sec. 2.3).
   std::array<Dual, 16> area;
   for (int j = 0; j < n_; ++j) {
     // A_j = signed area of (p_j, q, p_{j+1}), positive inside.

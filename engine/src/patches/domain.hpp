@@ -53,7 +53,7 @@ public:
     return T(frame.apexX) - T(frame.apexY) * (x - frame.apexX) / (y - frame.apexY);
   }
 
-  /// Hermite sweepline (paper 000 eq. 20): (u,v) = (s,0) + d [a H(s) + b H(1−s)]
+  /// Hermite sweepline ([SV14] eq. 20): (u,v) = (s,0) + d [a H(s) + b H(1−s)]
   /// in side i's frame. Returns s_i and d_i with derivatives (implicit
   /// differentiation of the quartic's root). `quintic` uses the fifth-degree
   /// Hermite polynomial of the footnote of Sec. 4.3.
@@ -86,18 +86,18 @@ public:
   /// perpendicularDistance with second derivatives (it is affine).
   Dual2 perpendicularDistance2(int i, Dual2 u, Dual2 v) const;
 
-  /// Linear sweep (paper 002 Sec. 2.3): the isoline of s_i is the straight
+  /// Linear sweep ([VSR] Sec. 2.3): the isoline of s_i is the straight
   /// line from the point at fraction s on side i to the point at fraction s
   /// on the chord p_{i−1} p_{i+2}; s = 0 is side i−1 and s = 1 side i+1.
   Dual linearSweepSideParameter(int i, Dual u, Dual v) const;
 
-  /// Wachspress distance parameter of paper 002 Sec. 2.3: d_i = 1 − λ_i − λ_{i+1}
+  /// Wachspress distance parameter of [VSR] Sec. 2.3: d_i = 1 − λ_i − λ_{i+1}
   /// (λ at the two ends of side i), for all sides at once.
   /// `distances` holds at least sides() entries.
   void wachspressDistances(Dual u, Dual v, std::span<Dual> distances) const;
 
-  /// The corner products of the blends in product form (paper 000 eq. 18,
-  /// paper 002): products[i] = D_{i,i−1} = ∏_{j ∉ {i−1, i}} powered[j], where
+  /// The corner products of the blends in product form ([SV14] eq. 18,
+  /// [VSR]): products[i] = D_{i,i−1} = ∏_{j ∉ {i−1, i}} powered[j], where
   /// powered[j] is side j's distance to the blend exponent. Returns their sum.
   /// Finite on the sides, where the reciprocal form divides by zero.
   template <typename T, std::size_t N>

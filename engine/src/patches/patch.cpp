@@ -250,7 +250,7 @@ DualVec3 Patch::evaluate(double u, double v) const {
   return gregory(du, dv);
 }
 
-// Gregory corner-based patch, paper 000 eqs. 16–18 with m = 2.
+// Gregory corner-based patch, [SV14] eqs. 16–18 with m = 2.
 DualVec3 Patch::gregory(Dual u, Dual v) const {
   const int n = domain_.sides();
   std::array<Dual, kMaxSides> s, distance;
@@ -314,7 +314,7 @@ Dual2Vec3 Patch::evaluateSecondOrder(double uValue, double vValue) const {
   return result;
 }
 
-// G² Gregory patch, paper 000 eqs. 16–18 with m = 3, parabolic ribbons, the
+// G² Gregory patch, [SV14] eqs. 16–18 with m = 3, parabolic ribbons, the
 // Hermite sweepline (eq. 20) and the nine-term correction patch (eq. 22).
 DualVec3 Patch::gregoryG2(Dual u, Dual v) const {
   const int n = domain_.sides();
@@ -345,7 +345,7 @@ DualVec3 Patch::gregoryG2(Dual u, Dual v) const {
   return result;
 }
 
-// Composite Ribbon patch, paper 002 Sec. 2.
+// Composite Ribbon patch, [VSR] Sec. 2.
 void Patch::compositeParameters(Dual u, Dual v, Dual *s, Dual *d, Dual *blend) const {
   const int n = domain_.sides();
   domain_.wachspressDistances(u, v, std::span<Dual>(d, static_cast<std::size_t>(n)));

@@ -46,7 +46,7 @@ struct PositionSink {
 
 /// Corner data of two parabolic ribbons for the G² correction patch:
 /// a[p][q] = ∂_s^p ∂_t^q R_{i−1}(1 − t, s), b[p][q] = ∂_s^p ∂_t^q R_i(s, t)
-/// at (0, 0), p, q ∈ {0, 1, 2} (DESIGN.md §3).
+/// at (0, 0), p, q ∈ {0, 1, 2} (docs/design.md §3).
 struct CornerData2 {
   Vec3 a[3][3], b[3][3];
 };
@@ -209,7 +209,7 @@ struct Patch::TableCache {
   PatchTables tables;
 };
 
-/// Gregory's rational correction term (DESIGN.md §3, G¹ case):
+/// Gregory's rational correction term (docs/design.md §3, G¹ case):
 /// Q(s,t) = a00 + gs W10 + gt W01 + gs gt W11 with
 /// W_pq = (s^{2−p} a_pq + t^{2−q} b_pq) / (s^{2−p} + t^{2−q}), where gs, gt are
 /// the (possibly reparameterized) coordinates multiplying the terms. Every
@@ -222,7 +222,7 @@ DualVec3 gregoryCorrection(const CornerData &c, Dual s, Dual t, Dual gs, Dual gt
 DualVec3 gregoryCorrection(const CornerData &c, Dual s, Dual t);
 
 
-/// The nine-term correction patch of paper 000 eq. 22:
+/// The nine-term correction patch of [SV14] eq. 22:
 /// Q = Σ_{p,q ≤ 2} s^p t^q / (p! q!) W_pq with
 /// W_pq = (s^{3−p} a_pq + t^{3−q} b_pq) / (s^{3−p} + t^{3−q}); W_00 = a_00.
 /// Q − R_{i−1}(1 − t, s) = O(t³) and Q − R_i(s, t) = O(s³) whatever the

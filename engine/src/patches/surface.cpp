@@ -101,7 +101,7 @@ constexpr int kCurvatureIntervals = 16;
 constexpr std::array<double, 5> kMeasureAngles = {std::numbers::pi / 6, std::numbers::pi / 3, std::numbers::pi / 2,
                                                   2 * std::numbers::pi / 3, 5 * std::numbers::pi / 6};
 
-/// Constrained fit (paper 000 App. A) of normal curvatures measured at the
+/// Constrained fit ([SV14] App. A) of normal curvatures measured at the
 /// kMeasureAngles from the tangent, keeping the curve's own curvature k0 at
 /// ω0 = 0; returns the fitted normal curvature across the curve (ω = π/2).
 double constrainedTransversal(const std::array<double, 5> &measured, double k0) {
@@ -360,7 +360,7 @@ std::shared_ptr<const TransversalCurvature> buildEdgeCurvature(const Impl &impl,
   const Segment &seg = network.segments()[e];
   const NormalFence &fence = *impl.fences[e];
   const Surface *g1 = impl.g1.get();
-  // The master face's side of the edge: named (paper 000 Sec. 5.1), or
+  // The master face's side of the edge: named ([SV14] Sec. 5.1), or
   // faces[0] for MasterSlave; -1 averages both (Averaging).
   // Connection curves: both sides, averaged (-1), like named masters
   // independent of the source chosen for the other edges.
@@ -484,7 +484,7 @@ FaceBuild buildFace(const Impl &impl, int f) {
     }
     ribbons.emplace_back(std::move(curve), std::move(pieces));
   }
-  // End conditions need the neighbouring sides' tangents (DESIGN.md §3).
+  // End conditions need the neighbouring sides' tangents (docs/design.md §3).
   const int n = static_cast<int>(ribbons.size());
   for (int i = 0; i < n; ++i) {
     const LinearRibbon &prev = ribbons[(i + n - 1) % n], &next = ribbons[(i + 1) % n];
@@ -664,7 +664,7 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
   buildVertexData(*impl, vertices);
   const std::vector<int> segments = allIndices(network.segments().size());
   if (g2) {
-    // Edges with an explicit master (paper 000 Sec. 5.1) take its curvature
+    // Edges with an explicit master ([SV14] Sec. 5.1) take its curvature
     // whatever the source elsewhere, so they need the G¹ patches too.
     // Connection curves (Sec. 5.2) always average the two G¹ patches. Kept
     // master faces are those patches, with their fences.

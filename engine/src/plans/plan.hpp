@@ -1,4 +1,4 @@
-// Evaluation plans (DESIGN.md §4): everything a transfinite patch needs at
+// Evaluation plans (docs/design.md §4): everything a transfinite patch needs at
 // the tessellator's samples that depends only on (scheme, n, resolution,
 // sweepline) — the domain samples, side 0's parameters (s_0, d_0) and corner
 // 0's blend at each, with exact first derivatives. The pattern is n-fold

@@ -1,7 +1,7 @@
 // Patch evaluation through an evaluation plan or at batches of domain
 // points: per side, the ribbon at the side parameters (from the ribbon
 // tables, or exactly at low plan resolutions: the only geometry-dependent
-// work); then the Gregory formula (paper 000 eqs. 16–18, 22) in one pass of
+// work); then the Gregory formula ([SV14] eqs. 16–18, 22) in one pass of
 // a SIMD kernel — kernels::gregoryPositions for points alone,
 // kernels::gregoryJets with exact first derivatives.
 #include <algorithm>

@@ -1,5 +1,5 @@
 // A side's ribbon functions as a piecewise quintic Hermite table in the side
-// parameter s, for evaluation at many parameters (DESIGN.md §4).
+// parameter s, for evaluation at many parameters (docs/design.md §4).
 //
 // Exact ribbon evaluation costs a B-spline, a fence interpolant, a
 // normalization and the α, β blend per parameter (G²: also the transversal

@@ -1,5 +1,5 @@
-// Normal fences, linear and parabolic ribbons (paper 000 Sec. 3.2–3.4,
-// DESIGN.md §3).
+// Normal fences, linear and parabolic ribbons ([SV14] Sec. 3.2–3.4,
+// docs/design.md §3).
 //
 // A fence belongs to a segment and is shared by the faces on both sides, so
 // both patches see the same normal N(u) and their cross-derivatives lie in
@@ -27,7 +27,7 @@ class NormalFence {
 public:
   NormalFence(const BSplineCurve &segment, const Vec3 &startNormal, const Vec3 &endNormal);
 
-  /// Curvature-compatible fence for G² (paper 000 eqs. 13–14, DESIGN.md §3):
+  /// Curvature-compatible fence for G² ([SV14] eqs. 13–14, docs/design.md §3):
   /// the rotation-minimizing frame from the start normal, turned about the
   /// tangent by an angle θ(σ) (σ = arc length, L the length) that is the cubic
   /// Hermite with θ(0) = 0, θ(L) = the angle left to the end normal, and
@@ -39,7 +39,7 @@ public:
   static NormalFence curvatureCompatible(const BSplineCurve &segment, const Vec3 &startNormal,
                                          const Vec3 &endNormal, double startRate, double endRate);
 
-  /// Fence whose normals are taken from a known surface (paper 000 Sec. 5.3):
+  /// Fence whose normals are taken from a known surface ([SV14] Sec. 5.3):
   /// `normalAt(point)` at the fence samples, projected perpendicular to the
   /// tangent and interpolated. At the two ends the vertex normals (the
   /// curves' common tangent plane, which every patch corner reproduces) win:
@@ -126,7 +126,7 @@ public:
 
   /// How α, β run between their end values: linearly, or by the quintic
   /// smoothstep 10s³ − 15s⁴ + 6s⁵, whose first and second derivatives vanish
-  /// at both ends. Paper 000 leaves α, β free (Sec. 3.2). The G² correction
+  /// at both ends. [SV14] leaves α, β free (Sec. 3.2). The G² correction
   /// patch (eq. 22) needs T' and T'' of the two ribbons at a corner to agree
   /// (W₁₁, W₁₂, W₂₁); with linear α, β they differ by the planar turn of T
   /// along each side (in a regular hexagon T'(0) and −T'_prev(1) are √3 edge
@@ -187,7 +187,7 @@ private:
   ScalarBlend blend_ = ScalarBlend::Linear;
 };
 
-/// Parabolic ribbon R(s, d) = P + d T + ½ d² C (paper 000 eqs. 10, 15) over a
+/// Parabolic ribbon R(s, d) = P + d T + ½ d² C ([SV14] eqs. 10, 15) over a
 /// linear ribbon: C = κ_T |T|² N, where κ_T |T|² = II(T, T) is the second
 /// fundamental form fixed along the edge by the fence (normal N, twist
 /// II(P', D) = −N'·D), the curve (II(P', P') = N·P'') and the shared

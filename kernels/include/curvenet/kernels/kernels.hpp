@@ -1,6 +1,6 @@
 // curvenet/kernels/kernels.hpp — batched evaluation kernels over many samples.
 //
-// Every kernel is one template over the SIMD width (DESIGN.md §4, STYLE.md
+// Every kernel is one template over the SIMD width (docs/design.md §4, STYLE.md
 // practice 5). The width-1 instance is the scalar reference; the other
 // instances are compiled for each instruction set the build supports and
 // chosen at run time for the CPU (Google Highway's dynamic dispatch). This
@@ -122,7 +122,7 @@ struct GregorySamples {
 /// ends and side i starts). G¹ (7 used): a00, a10, b10, a01, b01, a11, b11
 /// of Q = a00 + s W(a10, b10; s, t²) + t W(a01, b01; s², t) + s t W(a11, b11; s, t);
 /// G² (17): a00, then a_pq, b_pq for p, q ∈ {0, 1, 2} row by row without
-/// (0, 0), of paper 000 eq. 22 (W_pq = (s^{3−p} a + t^{3−q} b) / (s^{3−p} + t^{3−q})).
+/// (0, 0), of [SV14] eq. 22 (W_pq = (s^{3−p} a + t^{3−q} b) / (s^{3−p} + t^{3−q})).
 struct GregoryCorner {
   double v[17][3];
 };
@@ -152,7 +152,7 @@ GregoryCornerTerms gregoryCornerTerms(const GregoryCorner &corner);
 void gregoryCornerWeights(std::size_t count, const double *s, const double *sPrevious, double *weights,
                           std::size_t stride, std::int64_t width = kBestWidth);
 
-/// (b) Gregory patch positions (paper 000 eqs. 16–18, 22):
+/// (b) Gregory patch positions ([SV14] eqs. 16–18, 22):
 /// out[c][k] = Σ_i B_i (R_{i−1}(s_{i−1}, s_i) + R_i(s_i, t_i) − Q_i(s_i, t_i)),
 /// t_i = 1 − s_{i−1}, R(σ, δ) = P(σ) + δ T(σ) [+ ½ δ² C(σ)]. The rational
 /// weights of each corner share one division (batch inversion). Samples
@@ -188,7 +188,7 @@ struct GregoryJetSamples {
 void gregoryJets(std::size_t count, const GregoryJetSamples &samples, const GregoryCorner *corners, DualVec3Span out,
                  std::int64_t width = kBestWidth, const GregoryCornerTerms *terms = nullptr);
 
-/// Per-sample data of a Composite Ribbon patch (paper 002 Sec. 2). Side i
+/// Per-sample data of a Composite Ribbon patch ([VSR] Sec. 2). Side i
 /// contributes B_i C_i, its curved ribbon C_i a Coons patch of three
 /// ribbons: R_i at (s_i, d_i), R_{i−1} at (1 − d_i, s_i) and R_{i+1} at
 /// (d_i, 1 − s_i), each R(σ, δ) = P(σ) + γ(δ) T(σ) with γ(x) = x / (2x + 1),
@@ -221,7 +221,7 @@ void compositeRibbonJets(std::size_t count, const CompositeSamples &samples, con
                          const GregoryCorner *right, DualVec3Span out, std::int64_t width = kBestWidth);
 
 /// Constants of one side of a regular domain for the cubic Hermite sweepline
-/// (paper 000 eq. 20) in that side's frame (side from (0,0) to (1,0), domain
+/// ([SV14] eq. 20) in that side's frame (side from (0,0) to (1,0), domain
 /// at y > 0): a, b the directions of the neighbouring sides leaving the two
 /// ends; apex the intersection of their lines (the radial sweep's centre),
 /// or parallel = true when they do not meet (n = 4).
