@@ -1,4 +1,9 @@
-"""Type stubs of the curvenet module (python/curvenet_module.cpp documents each call)."""
+"""Type stubs of the curvenet module (python/curvenet_module.cpp documents each call).
+
+Copies: C-contiguous float64 arrays (uv, control points) are read in place, any other array-like is
+converted once; evaluate_positions writes into its result (or into out=); an Evaluation's fields are
+views of one (N, 4, 3) or (N, 7, 3) array; a Mesh is copied once from the model. The GIL is released
+during every engine call."""
 
 from typing import Any, Sequence, Union
 
