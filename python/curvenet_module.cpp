@@ -100,7 +100,7 @@ SurfaceOptions surfaceOptions(const std::string &scheme, const std::optional<std
   if (auto s = schemeFromName(scheme)) options.scheme = *s;
   else {
     std::string known;
-    for (Scheme s : availableSchemes()) known += (known.empty() ? "" : ", ") + schemeName(s);
+    for (Scheme available : availableSchemes()) known += (known.empty() ? "" : ", ") + schemeName(available);
     raiseError("unknown scheme '" + scheme + "'; available: " + known, "invalid-argument", "", "scheme");
   }
   if (edgeCurvature) {
