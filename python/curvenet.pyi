@@ -5,6 +5,7 @@ converted once; evaluate_positions writes into its result (or into out=); an Eva
 views of one (N, 4, 3) or (N, 7, 3) array; a Mesh is copied once from the model. The GIL is released
 during every engine call."""
 
+import os
 from typing import Any, Sequence, Union
 
 import numpy as np
@@ -67,7 +68,7 @@ class Model:
     """A curve network and the transfinite surfaces over its faces."""
 
     @staticmethod
-    def load(source: str, scheme: str = "gregory-g1", edge_curvature: str | None = None,
+    def load(source: str | os.PathLike[str], scheme: str = "gregory-g1", edge_curvature: str | None = None,
              master_faces: str | None = None) -> Model:
         """'builtin:NAME' or a network file (.json, .lop), every face with `scheme`."""
     @staticmethod

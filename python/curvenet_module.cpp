@@ -177,8 +177,11 @@ class PyModel {
 public:
   PyModel(Model model, std::string source) : model_(std::move(model)), source_(std::move(source)) {}
 
-  static std::unique_ptr<PyModel> load(const std::string &source, const std::string &scheme,
-                      const std::optional<std::string> &edgeCurvature, const std::optional<std::string> &masterFaces) {
+  /// `path`: a str or any os.PathLike (a pathlib.Path).
+  static std::unique_ptr<PyModel> load(const py::object &path, const std::string &scheme,
+                                       const std::optional<std::string> &edgeCurvature,
+                                       const std::optional<std::string> &masterFaces) {
+    const std::string source = py::str(py::module_::import("os").attr("fspath")(path));
     const SurfaceOptions options = surfaceOptions(scheme, edgeCurvature, masterFaces);
     std::optional<Result<Model>> model;
     {
@@ -544,7 +547,8 @@ PYBIND11_MODULE(curvenet, m) {
                       "calls that change the model wait for them.")
       .def_static("load", &PyModel::load, py::arg("source"), py::arg("scheme") = "gregory-g1",
                   py::arg("edge_curvature") = py::none(), py::arg("master_faces") = py::none(),
-                  "Loads 'builtin:NAME' or a network file (.json, .lop) and builds every face with `scheme`\n"
+                  "Loads 'builtin:NAME' or a network file (.json, .lop; a str or os.PathLike) and builds every face\n"
+                  "with `scheme` "
                   "(gregory-g1, composite-ribbon, gregory-g2, bezier-g1, coons-c0).")
       .def_static("build", &PyModel::build, py::arg("curves"), py::arg("faces"), py::arg("scheme") = "gregory-g1",
                   py::arg("tolerance") = 1e-7, py::arg("name") = "",

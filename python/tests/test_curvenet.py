@@ -104,6 +104,27 @@ def test_evaluation_equals_the_c_interface_bit_for_bit(capi, source, scheme):
         capi.curvenet_model_destroy(native)
 
 
+SHARED_MODELS = pathlib.Path(os.environ.get("CURVENET_SHARED_DATA_DIR", "../shared/data")) / "transfinite-models"
+
+
+@pytest.mark.parametrize("name", ["cagd86.lop", "pocket3sided.lop"])
+def test_real_models_evaluate_as_through_the_c_interface(capi, name):
+    path = SHARED_MODELS / name
+    if not path.exists():
+        pytest.skip(f"shared model not present at {path}")
+    model = curvenet.Model.load(path, scheme="gregory-g2")  # any os.PathLike
+    native = c_model(capi, str(path), "gregory-g2")
+    try:
+        for face in range(model.face_count):
+            uv = domain_points(model, face, 500, seed=face)
+            expected, status = np.empty((len(uv), 3)), Status()
+            assert capi.curvenet_model_evaluate_positions(native, face, uv.ctypes.data, len(uv),
+                                                          expected.ctypes.data, None, ctypes.byref(status)) == 0
+            assert np.array_equal(model.evaluate_positions(face, uv), expected)
+    finally:
+        capi.curvenet_model_destroy(native)
+
+
 def test_mesh_equals_the_c_interface(capi):
     model = curvenet.Model.load("builtin:sphere-dodecahedron", scheme="gregory-g2")
     mesh = model.tessellate(resolution=6, threads=1)
