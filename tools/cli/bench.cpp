@@ -24,6 +24,7 @@
 #include "curvenet/io.hpp"
 #include "curvenet/kernels/kernels.hpp"
 #include "curvenet/tessellate.hpp"
+#include "report.hpp"
 
 namespace curvenet::cli {
 
@@ -137,6 +138,50 @@ SchemeFigures measure(const Network &network, Scheme scheme, int resolution, int
 
 } // namespace
 
+nlohmann::json benchReport(const BenchOptions &options) {
+  const Network network = Network::build(loadNetworkInput(options.input), options.input);
+  const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
+  std::vector<SchemeFigures> figures;
+  for (Scheme s : {Scheme::GregoryG1, Scheme::GregoryG2, Scheme::CompositeRibbon})
+    figures.push_back(measure(network, s, options.resolution, options.points));
+  // The Gregory schemes' evaluation figures are compared with each
+  // other: they are measured together, in turns. Composite-ribbon
+  // (per sample, ~1 s a run) takes fewer rounds.
+  measureEvaluation(network, {&figures[0], &figures[1]}, options.resolution, threads, 7);
+  measureEvaluation(network, {&figures[2]}, options.resolution, threads, 3);
+  const SchemeFigures &g1 = figures[0], &g2 = figures[1];
+  auto perSecond = [](std::size_t n, double s) { return s > 0 ? n / s : 0.0; };
+  nlohmann::json out;
+  out["input"] = options.input;
+  out["resolution"] = options.resolution;
+  out["threads"] = threads;
+  out["kernel_width"] = kernels::bestWidth().name + " (" + std::to_string(kernels::bestWidth().lanes) + " doubles)";
+  out["g1_points_per_second_per_core"] = perSecond(g1.interiorPoints, g1.warm);
+  out["g2_points_per_second_per_core"] = perSecond(g2.interiorPoints, g2.warm);
+  out["g2_over_g1_eval_cost"] = g2.warm / g1.warm;
+  out["g2_over_g1_pointwise_cost"] = g2.pointwise / g1.pointwise;
+  out["g2_over_g1_build_cost"] = g2.build / g1.build;
+  out["g2_over_g1_tessellation_cost"] = g2.tessellation / g1.tessellation;
+  out["g2_tessellation_points_per_second_per_core"] = perSecond(g2.meshPoints, g2.tessellation);
+  out["warm_over_cold_speedup"] = g2.cold / g2.warm;
+  out["thread_speedup"] = g2.warm / g2.warmThreads;
+  for (const SchemeFigures &f : figures)
+    out["schemes"][f.name] = {{"build_seconds", f.build},
+                              {"pointwise_points", options.points},
+                              {"pointwise_seconds", f.pointwise},
+                              {"pointwise_points_per_second", perSecond(options.points, f.pointwise)},
+                              {"evaluated_points", f.interiorPoints},
+                              {"cold_seconds", f.cold},
+                              {"warm_seconds", f.warm},
+                              {"warm_threads_seconds", f.warmThreads},
+                              {"warm_points_per_second_per_core", perSecond(f.interiorPoints, f.warm)},
+                              {"mesh_points", f.meshPoints},
+                              {"tessellation_seconds", f.tessellation},
+                              {"tessellation_points_per_second", perSecond(f.meshPoints, f.tessellation)},
+                              {"plan_cache_bytes", f.planBytes}};
+  return out;
+}
+
 Command addBenchCommand(CLI::App &app) {
   struct Options {
     std::string input = "builtin:pentagon";
@@ -153,65 +198,33 @@ Command addBenchCommand(CLI::App &app) {
   sub->add_flag("--json", o->json, "print one JSON object");
   addQuietFlag(sub, o->quiet); // accepted everywhere; bench shows no progress line
   return {sub, [o] {
-            const Network network = Network::build(loadNetworkInput(o->input), o->input);
-            const int threads = o->threads > 0 ? o->threads : tbb::info::default_concurrency();
-            std::vector<SchemeFigures> figures;
-            for (Scheme s : {Scheme::GregoryG1, Scheme::GregoryG2, Scheme::CompositeRibbon})
-              figures.push_back(measure(network, s, o->resolution, o->points));
-            // The Gregory schemes' evaluation figures are compared with each
-            // other: they are measured together, in turns. Composite-ribbon
-            // (per sample, ~1 s a run) takes fewer rounds.
-            measureEvaluation(network, {&figures[0], &figures[1]}, o->resolution, threads, 7);
-            measureEvaluation(network, {&figures[2]}, o->resolution, threads, 3);
-            const SchemeFigures &g1 = figures[0], &g2 = figures[1];
-            auto perSecond = [](std::size_t n, double s) { return s > 0 ? n / s : 0.0; };
-            nlohmann::json out;
-            out["input"] = o->input;
-            out["resolution"] = o->resolution;
-            out["threads"] = threads;
-            out["kernel_width"] = kernels::bestWidth().name + " (" + std::to_string(kernels::bestWidth().lanes) + " doubles)";
-            out["g1_points_per_second_per_core"] = perSecond(g1.interiorPoints, g1.warm);
-            out["g2_points_per_second_per_core"] = perSecond(g2.interiorPoints, g2.warm);
-            out["g2_over_g1_eval_cost"] = g2.warm / g1.warm;
-            out["g2_over_g1_pointwise_cost"] = g2.pointwise / g1.pointwise;
-            out["g2_over_g1_build_cost"] = g2.build / g1.build;
-            out["g2_over_g1_tessellation_cost"] = g2.tessellation / g1.tessellation;
-            out["g2_tessellation_points_per_second_per_core"] = perSecond(g2.meshPoints, g2.tessellation);
-            out["warm_over_cold_speedup"] = g2.cold / g2.warm;
-            out["thread_speedup"] = g2.warm / g2.warmThreads;
-            for (const SchemeFigures &f : figures)
-              out["schemes"][f.name] = {{"build_seconds", f.build},
-                                        {"pointwise_points", o->points},
-                                        {"pointwise_seconds", f.pointwise},
-                                        {"pointwise_points_per_second", perSecond(o->points, f.pointwise)},
-                                        {"evaluated_points", f.interiorPoints},
-                                        {"cold_seconds", f.cold},
-                                        {"warm_seconds", f.warm},
-                                        {"warm_threads_seconds", f.warmThreads},
-                                        {"warm_points_per_second_per_core", perSecond(f.interiorPoints, f.warm)},
-                                        {"mesh_points", f.meshPoints},
-                                        {"tessellation_seconds", f.tessellation},
-                                        {"tessellation_points_per_second", perSecond(f.meshPoints, f.tessellation)},
-                                        {"plan_cache_bytes", f.planBytes}};
+            const nlohmann::json out = benchReport({o->input, o->resolution, o->points, o->threads});
             if (o->json) {
               std::printf("%s\n", out.dump(2).c_str());
               return 0;
             }
+            const int threads = out["threads"];
             std::printf("%s, resolution %d, %d threads, kernels %s\n\n", o->input.c_str(), o->resolution, threads,
                         out["kernel_width"].get<std::string>().c_str());
             std::printf("%-17s %9s %11s %11s %9s %9s %9s %10s %13s %11s %13s\n", "scheme", "build ms",
                         ("eval " + std::to_string(o->points) + " ms").c_str(), "pointwise/s", "points", "cold ms",
                         "warm ms", "warm Nt ms", "warm pts/s/core", "tess. ms", "tess. pts/s");
-            for (const SchemeFigures &f : figures)
-              std::printf("%-17s %9.2f %11.2f %11.3g %9zu %9.2f %9.2f %10.2f %13.3g %11.2f %13.3g\n", f.name.c_str(),
-                          f.build * 1e3, f.pointwise * 1e3, perSecond(o->points, f.pointwise), f.interiorPoints,
-                          f.cold * 1e3, f.warm * 1e3, f.warmThreads * 1e3, perSecond(f.interiorPoints, f.warm),
-                          f.tessellation * 1e3, perSecond(f.meshPoints, f.tessellation));
+            for (Scheme scheme : {Scheme::GregoryG1, Scheme::GregoryG2, Scheme::CompositeRibbon}) {
+              const nlohmann::json &f = out["schemes"][schemeName(scheme)];
+              auto ms = [&](const char *key) { return f[key].get<double>() * 1e3; };
+              auto number = [&](const char *key) { return f[key].get<double>(); };
+              std::printf("%-17s %9.2f %11.2f %11.3g %9zu %9.2f %9.2f %10.2f %13.3g %11.2f %13.3g\n",
+                          schemeName(scheme).c_str(), ms("build_seconds"), ms("pointwise_seconds"),
+                          number("pointwise_points_per_second"), f["evaluated_points"].get<std::size_t>(),
+                          ms("cold_seconds"), ms("warm_seconds"), ms("warm_threads_seconds"),
+                          number("warm_points_per_second_per_core"), ms("tessellation_seconds"),
+                          number("tessellation_points_per_second"));
+            }
             std::printf("\nG2/G1 cost: build %.2f, pointwise %.2f, warm evaluation %.2f, tessellation %.2f\n",
-                        g2.build / g1.build, g2.pointwise / g1.pointwise, g2.warm / g1.warm,
-                        g2.tessellation / g1.tessellation);
-            std::printf("G2 warm over cold: %.2fx; %d threads over 1: %.2fx\n", g2.cold / g2.warm, threads,
-                        g2.warm / g2.warmThreads);
+                        out["g2_over_g1_build_cost"].get<double>(), out["g2_over_g1_pointwise_cost"].get<double>(),
+                        out["g2_over_g1_eval_cost"].get<double>(), out["g2_over_g1_tessellation_cost"].get<double>());
+            std::printf("G2 warm over cold: %.2fx; %d threads over 1: %.2fx\n",
+                        out["warm_over_cold_speedup"].get<double>(), threads, out["thread_speedup"].get<double>());
             return 0;
           }};
 }

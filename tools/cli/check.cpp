@@ -29,6 +29,21 @@ void runTweak(const Network &network, const std::string &output, nlohmann::json 
 
 } // namespace
 
+nlohmann::json checkReport(const Network &network, const std::string &input, const CheckOptions &options) {
+  nlohmann::json report = networkReport(network, input);
+  addVertexAnalysis(report, analyzeNetwork(network));
+  const Surface surface = Surface::build(network, options.surface);
+  warnAboutFolds(surface);
+  addSurfaceReport(report, surface, options.samples, options.resolution);
+  if (options.surface.scheme == Scheme::BezierG1) {
+    // [OSK11]'s comparison: the C⁰ Coons patches of the same network beside the G¹ figures.
+    nlohmann::json coons;
+    addSurfaceReport(coons, Surface::build(network, {Scheme::CoonsC0}), options.samples, options.resolution);
+    report["baseline"] = coons;
+  }
+  return report;
+}
+
 Command addCheckCommand(CLI::App &app) {
   struct Options {
     std::string input;
@@ -66,21 +81,13 @@ Command addCheckCommand(CLI::App &app) {
             std::optional<tbb::global_control> limit;
             if (options->threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, options->threads);
             const SurfaceOptions surfaceOptions = parseSurfaceOptions(options->scheme, options->masters);
-            const Scheme scheme = surfaceOptions.scheme;
             const Network network = Network::build(loadNetworkInput(options->input), options->input);
-            nlohmann::json report = networkReport(network, options->input);
-            addVertexAnalysis(report, analyzeNetwork(network));
-            if (options->tweak) runTweak(network, options->output, report);
-            const Surface surface = Surface::build(network, surfaceOptions);
-            warnAboutFolds(surface);
-            addSurfaceReport(report, surface, options->samples, options->resolution);
-            if (scheme == Scheme::BezierG1) {
-              // [OSK11]'s comparison: the C⁰ Coons patches of the same network beside the G¹ figures.
-              nlohmann::json coons;
-              addSurfaceReport(coons, Surface::build(network, {Scheme::CoonsC0}), options->samples,
-                               options->resolution);
-              report["baseline"] = coons;
-            }
+            // The tweak goes first: a failed write stops before the surface work.
+            nlohmann::json tweakReport;
+            if (options->tweak) runTweak(network, options->output, tweakReport);
+            nlohmann::json report =
+                checkReport(network, options->input, {surfaceOptions, options->samples, options->resolution});
+            if (options->tweak) report["tweak"] = tweakReport["tweak"];
             if (options->json) std::printf("%s\n", report.dump(2).c_str());
             else printReportTable(report);
             return 0;

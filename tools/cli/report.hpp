@@ -36,6 +36,35 @@ void addVertexAnalysis(nlohmann::json &report, const NetworkAnalysis &analysis);
 void addTweakReport(nlohmann::json &report, const TweakResult &tweak, const NetworkAnalysis &repaired,
                     const std::string &output);
 
+/// What `check` measures besides the network: the surface of `surface`'s
+/// scheme, sampled at `samples` points per segment, and its reference
+/// deviation at tessellation `resolution`.
+struct CheckOptions {
+  SurfaceOptions surface;
+  int samples = 64;
+  int resolution = 32;
+};
+
+/// The object `curvenet check --json` prints (without `tweak`): the
+/// networkReport of `network` read from `input`, its vertex analysis, the
+/// surface report for `options` and, for bezier-g1, the coons-c0 `baseline`.
+/// Throws InputError when the surface cannot be built.
+nlohmann::json checkReport(const Network &network, const std::string &input, const CheckOptions &options);
+
+/// What `bench` measures: the network `input` (file or builtin:NAME), face
+/// interiors at `resolution`, `points` random domain points, and the
+/// parallel figures on `threads` threads (0 = all cores).
+struct BenchOptions {
+  std::string input = "builtin:pentagon";
+  int resolution = 256, points = 4000, threads = 0;
+};
+
+/// The object `curvenet bench --json` prints: per scheme (gregory-g1,
+/// gregory-g2, composite-ribbon) build, pointwise, face-interior (cold, warm,
+/// all threads) and tessellation timings, and the G²/G¹ ratios. Runs for
+/// seconds at the default resolution.
+nlohmann::json benchReport(const BenchOptions &options);
+
 /// The vertex table of an analysed report, worst vertices first (at most
 /// `maxRows` rows), then the one-line verdict and the tweak summary.
 void printAnalysisTable(const nlohmann::json &report, int maxRows = 30);

@@ -403,6 +403,13 @@ curvenet_image_encode_fn imageEncoder(const std::string &path) {
 
 } // namespace
 
+std::vector<std::uint8_t> srgbBytes(const Image &img) {
+  std::vector<std::uint8_t> bytes(img.color.size());
+  for (std::size_t i = 0; i < bytes.size(); ++i)
+    bytes[i] = static_cast<std::uint8_t>(std::lround(255.f * srgbFromLinear(img.color[i])));
+  return bytes;
+}
+
 void writeImage(const Image &img, const std::string &path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char &c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -413,7 +420,7 @@ void writeImage(const Image &img, const std::string &path) {
   CURVENET_CHECK(img.color.size() == 3 * pixels && img.phase.size() == pixels, "image arrays do not match its size");
 
   std::vector<float> floats;
-  std::vector<unsigned char> bytes;
+  std::vector<std::uint8_t> bytes;
   const std::string mode(modeName(img.mode)), text = description(img);
   std::vector<curvenet_image_attribute> attributes;
   const char *const channelNames[] = {"R", "G", "B", "A", "phase", "face"};
@@ -439,9 +446,7 @@ void writeImage(const Image &img, const std::string &path) {
     request.pixels = floats.data();
   } else {
     request.format = "png", request.channels = 3, request.float_pixels = 0;
-    bytes.resize(3 * pixels);
-    for (std::size_t i = 0; i < 3 * pixels; ++i)
-      bytes[i] = static_cast<unsigned char>(std::lround(255.f * srgbFromLinear(img.color[i])));
+    bytes = srgbBytes(img);
     request.pixels = bytes.data();
     attributes.push_back({"oiio:ColorSpace", "sRGB", 0});
   }

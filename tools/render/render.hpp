@@ -89,6 +89,10 @@ struct Image {
 /// Throws InputError for bad options or a mesh without normals or triangles.
 Image renderMesh(const Mesh &mesh, const RenderOptions &options, std::span<const double> vertexValues = {});
 
+/// The picture as 8-bit sRGB, 3 bytes per pixel, rows top to bottom: the
+/// pixels of the PNG that writeImage writes.
+std::vector<std::uint8_t> srgbBytes(const Image &image);
+
 /// Writes `image` by the extension of `path`: .png (8-bit sRGB RGB, a text
 /// description with mode and range) or .exr (32-bit float channels R, G, B
 /// (linear), A = coverage, phase, face; attributes curvenet:mode,

@@ -11,6 +11,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libtbb-dev libeigen3-dev libembree-dev libopenimageio-dev
   libbenchmark-dev libgtest-dev libgmock-dev libhwy-dev nlohmann-json3-dev libcli11-dev
+  python3-dev pybind11-dev python3-numpy python3-pytest
 )
 
 # Extra packages for the sanitizer and fuzzing scripts (e.g. clang).

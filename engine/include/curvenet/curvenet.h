@@ -24,9 +24,12 @@
  * same model from any number of threads; calls taking `curvenet_model *`
  * need exclusive access to it. Different models are independent.
  *
- * Linking. The engine is a C++ library: with CMake, a C program links it
- * with target_link_libraries(app curvenet::engine), which also brings the C++
- * runtime. Without CMake link libcurvenet, libtbb, libstdc++ and libm.
+ * Linking. The shared library libcurvenet.so carries everything it needs:
+ *   cc app.c $(pkg-config --cflags --libs curvenet)
+ * (other languages load libcurvenet.so.0 by name). With CMake, link
+ * curvenet::shared, or curvenet::engine for the static library, which also
+ * brings the C++ runtime. The static library without CMake:
+ * libcurvenet.a libcurvenet_kernels.a -ltbb -lhwy -lstdc++ -lm.
  */
 #ifndef CURVENET_CURVENET_H
 #define CURVENET_CURVENET_H
