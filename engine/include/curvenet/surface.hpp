@@ -79,14 +79,16 @@ enum class Scheme { GregoryG1, CompositeRibbon, GregoryG2, BezierG1, CoonsC0 };
 /// second order, C² reproduction of the ribbons). Auto is Radial for
 /// gregory-g1 and Hermite for gregory-g2.
 ///
-/// On a 3-sided face the Hermite sweeplines of a side cannot all reach the
+/// On a 3-sided face straight Hermite sweeplines cannot all reach the
 /// opposite corner: with the constant parametric speed along the two other
 /// sides that eq. 19 demands, they cross beyond 2/3 of the way there (on the
-/// bisector). The sweep then takes the orientation-preserving root nearest
-/// the radial parameter, which leaves a fold along that bisector near the
-/// corner, where the interpolants using this sweep have little weight. This
-/// is why gregory-g1 defaults to the radial sweep, which covers every n-gon
-/// one-to-one.
+/// bisector), and patches folded along it. There Hermite is instead the
+/// radial parameter t eased towards the smoothstep 3t² − 2t³ in proportion
+/// to the distance c from the side (in units of the height):
+/// s = (1 − c) t + c (3t² − 2t³). It meets eq. 19 to first order with the
+/// cubic sweep's rate, and its isolines never cross. QuinticHermite keeps
+/// eq. 20 on triangles, crossings included. gregory-g1 defaults to the
+/// radial sweep, which covers every n-gon one-to-one.
 enum class Sweepline { Auto, Radial, Hermite, QuinticHermite };
 
 /// Where the normal fences (the shared normals along every edge) come from.

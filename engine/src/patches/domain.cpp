@@ -30,6 +30,7 @@ RegularDomain::RegularDomain(int sides) : n_(sides) {
     const Vec2 e = corner(i + 1) - corner(i);
     sideAxes_.push_back({corner(i), e / dot(e, e)});
   }
+  if (n_ == 3) inverseHeight_ = 1 / perpendicularDistance(0, Dual(corner(2).x), Dual(corner(2).y)).v;
   // Every side sees its neighbours alike (the polygon is regular): one frame
   // serves all sides, as the plans' rotations assume.
   const Vec2 e = corner(1) - corner(0);
@@ -80,10 +81,23 @@ bool RegularDomain::rootAtSweepEnd(double x, double y) const {
   return std::abs(x * a_.y - y * a_.x) <= tolerance || std::abs((x - 1) * b_.y - y * b_.x) <= tolerance; // F(0), F(1)
 }
 
+Dual RegularDomain::triangleSweep(int i, Dual u, Dual v) const {
+  return triangleSideParameter(perpendicularDistance(i - 1, u, v), perpendicularDistance(i + 1, u, v),
+                               perpendicularDistance(i, u, v));
+}
+
+Dual2 RegularDomain::triangleSweep2(int i, Dual2 u, Dual2 v) const {
+  return triangleSideParameter(perpendicularDistance2(i - 1, u, v), perpendicularDistance2(i + 1, u, v),
+                               perpendicularDistance2(i, u, v));
+}
+
 RegularDomain::SweepParameters RegularDomain::hermiteSweep(int i, Dual u, Dual v, bool quintic) const {
-  // Triangles keep the grid solver: their sweeplines cross near the
-  // opposite corner (see Sweepline), where a point lies on several of them
-  // and the two solvers' selection can part at rounding level.
+  // Triangles: the cubic sweep in closed form (triangleSideParameter), d the
+  // distance from the side in units of the height. The quintic keeps eq. 20
+  // by the grid solver, whose sweeplines cross near the opposite corner
+  // (see Sweepline): there a point lies on several of them and the two
+  // solvers' selection can part at rounding level.
+  if (sides() == 3 && !quintic) return {triangleSweep(i, u, v), perpendicularDistance(i, u, v) * inverseHeight_};
   if (quintic || sides() == 3) return hermiteSweepByGrid(i, u, v, quintic);
   Dual x, y;
   sideFrame(i, u, v, x, y);
@@ -215,6 +229,7 @@ Dual2 RegularDomain::hermiteSweepSide2(int i, Dual2 u, Dual2 v, bool quintic) co
   const double l2 = dot(e, e);
   const Dual2 qx = u - p.x, qy = v - p.y;
   const Dual2 x = (qx * e.x + qy * e.y) * (1.0 / l2), y = (qy * e.x - qx * e.y) * (1.0 / l2);
+  if (n_ == 3 && !quintic) return triangleSweep2(i, u, v);
   const Vec2 &a = a_, &b = b_;
   const double s0 = hermiteSweep(i, Dual(u.v), Dual(v.v), quintic).s.v;
   auto H = [quintic](double s) -> std::array<double, 3> {

@@ -62,7 +62,9 @@ public:
   };
   /// The cubic sweep's root comes from kernels::hermiteSweepRoots (certified
   /// Newton, the robust solver where the certificate fails); the quintic
-  /// sweep's, and a triangle's, from hermiteSweepByGrid.
+  /// sweep's from hermiteSweepByGrid. A triangle's cubic sweep is
+  /// triangleSideParameter instead (d: the distance from side i in units of
+  /// the height), its quintic one eq. 20 by the grid solver.
   SweepParameters hermiteSweep(int i, Dual u, Dual v, bool quintic = false) const;
   /// hermiteSweep's s_i for every side at once (s holds sides() entries):
   /// the cubic sweeps' roots in one batch of the kernel solver, which fills
@@ -83,6 +85,37 @@ public:
   /// hermiteSweep refined by two Newton steps in hyper-dual arithmetic (the
   /// first fixes the first derivatives, the second the second derivatives).
   Dual2 hermiteSweepSide2(int i, Dual2 u, Dual2 v, bool quintic = false) const;
+  /// Side parameter of a triangle (n = 3) in closed form: the sweep that
+  /// replaces eq. 20 there (see Sweepline in curvenet/surface.hpp). With
+  /// t = a / (a + b) the radial parameter (a, b the distances to sides i − 1
+  /// and i + 1) and c the distance to side i, all in units of the height
+  /// (a + b + c = 1),
+  ///   s_i = (1 − c) t + c (3t² − 2t³),
+  /// the radial sweep eased by the smoothstep in proportion to the distance
+  /// from the side. Properties:
+  ///  - s_i = 0 on side i − 1, 1 on side i + 1, the fraction t on side i;
+  ///  - ∂s_i/∂a = 1 on side i − 1 and ∂s_i/∂b = −1 on side i + 1, all along
+  ///    them: across side i the parameters s_{i+1} and 1 − s_{i−1} that the
+  ///    two corner interpolants give ribbon i's distance agree to first
+  ///    order (what eq. 19 asks for G², with the rate of eq. 20);
+  ///  - s_i increases strictly along every line parallel to side i
+  ///    (∂s/∂t ≥ 1 − c > 0), so its isolines never cross: the map
+  ///    (s_i, c) ↦ (u, v) is one-to-one with a positive Jacobian inside.
+  /// The radial parameter is undefined at the opposite corner (a = b = 0),
+  /// where every blend of this side vanishes; 1/2 is returned there.
+  /// Arguments: perpendicular distances as perpendicularDistance gives them.
+  template <class T> T triangleSideParameter(T previous, T next, T own) const {
+    const T a = previous * inverseHeight_, b = next * inverseHeight_, c = own * inverseHeight_;
+    const T sum = a + b;
+    if (valueOf(sum) <= 0) return T(0.5);
+    const T t = a / sum;
+    return t + c * t * (T(1.0) - t) * (t * 2.0 - 1.0);
+  }
+  /// triangleSideParameter of side i at a domain point, first or second
+  /// derivatives included.
+  Dual triangleSweep(int i, Dual u, Dual v) const;
+  Dual2 triangleSweep2(int i, Dual2 u, Dual2 v) const;
+
   /// perpendicularDistance with second derivatives (it is affine).
   Dual2 perpendicularDistance2(int i, Dual2 u, Dual2 v) const;
 
@@ -127,7 +160,13 @@ private:
   /// the solver kernel cannot certify it, hermiteSweepByGrid takes it.
   bool rootAtSweepEnd(double x, double y) const;
 
+  static double valueOf(double x) { return x; }
+  static double valueOf(const Dual &x) { return x.v; }
+  static double valueOf(const Dual2 &x) { return x.v; }
+
   int n_;
+  /// 1 / the height of the triangle over a side, in units of the side length (n = 3).
+  double inverseHeight_ = 0;
   std::vector<Vec2> corners_;
   /// Side i's frame (sideFrame): its start corner and e / |e|², e = p_{i+1} − p_i.
   struct SideAxes {

@@ -121,9 +121,9 @@ double constrainedTransversal(const std::array<double, 5> &measured, double k0) 
 /// shared by every face and build: no sweepline root solve per face). The
 /// first row and the spokes are evaluated point by point, inset a little:
 /// from the sides, so that straight-angle corners with vanishing derivatives
-/// are avoided, and from the spokes, where the Hermite sweep of a triangle
-/// has its known fold along the bisector near the corner (surface.hpp,
-/// Sweepline), which the interpolants there barely weigh.
+/// are avoided, and from the spokes, where the quintic Hermite sweep of a
+/// triangle has its known fold along the bisector near the corner
+/// (surface.hpp, Sweepline), which the interpolants there barely weigh.
 struct NonFinitePatch {};
 
 constexpr int kFoldRows = 8;

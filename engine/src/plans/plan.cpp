@@ -81,11 +81,12 @@ EvaluationPlan::EvaluationPlan(const PlanKey &key) : key_(key) {
     sin_.push_back(std::sin(angle));
   }
 
-  // On a triangle the Hermite sweeplines of a side cross near the opposite
-  // corner, and on the bisector there the two roots tie (see Sweepline): a
-  // rotated sample, off by a rounding error, may pick the other one. There
-  // every side is solved at the sample itself, as Surface::evaluate does.
-  // The engine's scalar solver then decides side 0 too (its tie-breaking).
+  // On a triangle every side is computed at the sample itself, as
+  // Surface::evaluate does: the quintic sweeplines cross near the opposite
+  // corner, and on the bisector there the two roots tie (see Sweepline), so
+  // a rotated sample, off by a rounding error, may pick the other one; the
+  // cubic sweep is closed-form there (RegularDomain::triangleSideParameter)
+  // and costs no more than a rotation.
   perSide_ = n == 3 && key.scheme != Scheme::CompositeRibbon && key.sweepline != Sweepline::Radial;
   s_.resize(perSide_ ? n * count : count), d_.resize(count), b_.resize(count);
   const bool cr = key.scheme == Scheme::CompositeRibbon;

@@ -347,6 +347,7 @@ void Patch::evaluatePositions(std::size_t count, const double *u, const double *
   constexpr std::size_t kChunk = 512;
   const bool g2 = options_.scheme == Scheme::GregoryG2;
   const bool radial = options_.sweepline == Sweepline::Radial;
+  const bool triangle = n == 3 && !radial;
   struct Frames {
     std::size_t count = 0;
     std::vector<double> data;
@@ -375,12 +376,20 @@ void Patch::evaluatePositions(std::size_t count, const double *u, const double *
       if (radial) {
         // Closed form: the domain's own formula (as evaluate() uses it) on the frame coordinates.
         for (std::size_t k = 0; k < m; ++k) s[k] = RegularDomain::radialSideParameter(frame, x[k], y[k]);
-      } else {
+      } else if (!triangle) {
         double *unused = scratch.at(3 * n + i);
         kernels::hermiteSweepRoots(m, frame, x, y, s, unused);
       }
       side[i] = s;
     }
+    // A triangle's sweep is closed-form in the three distances (RegularDomain::triangleSideParameter).
+    if (triangle)
+      for (int i = 0; i < n; ++i) {
+        double *s = scratch.at(i);
+        const double *previous = scratch.at(n + domain_.wrap(i - 1)), *next = scratch.at(n + domain_.wrap(i + 1)),
+                     *own = scratch.at(n + i);
+        for (std::size_t k = 0; k < m; ++k) s[k] = domain_.triangleSideParameter(previous[k], next[k], own[k]);
+      }
     // Corner blends B_{i,i−1} = ∏_{j∉{i,i−1}} Δ_j^m / Σ_k ∏_{j∉{k,k−1}} Δ_j^m, in
     // the product order of RegularDomain::cornerProducts.
     std::array<double *, kMaxSides> product;
@@ -560,6 +569,11 @@ void Patch::evaluateBatch(std::size_t count, const double *u, const double *v, D
         domain_.sideFrame(i, Dual::u(u[k]), Dual::vCoord(v[k]), fx, fy);
         sides[i * count + k] = RegularDomain::radialSideParameter(frame, fx, fy);
       }
+      continue;
+    }
+    if (n == 3) {
+      // A triangle's sweep is closed-form (RegularDomain::triangleSideParameter).
+      for (std::size_t k = 0; k < count; ++k) sides[i * count + k] = domain_.triangleSweep(i, Dual::u(u[k]), Dual::vCoord(v[k]));
       continue;
     }
     // Side i's frame coordinates, then all its cubic Hermite roots in one batched solve.

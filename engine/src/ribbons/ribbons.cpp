@@ -229,12 +229,42 @@ void LinearRibbon::setEndConditions(const Vec3 &startTarget, const Vec3 &endTarg
   };
   solve(0.0, startTarget, alpha0_, beta0_);
   solve(1.0, endTarget, alpha1_, beta1_);
+  if (blend == ScalarBlend::Linear) {
+    // Coefficients of the unit frame (D/|D|, P'/|P'|); |D| = |P'|.
+    const double speed0 = norm(curve_.derivatives(0.0)[1]), speed1 = norm(curve_.derivatives(1.0)[1]);
+    alpha0_ *= speed0, beta0_ *= speed0, alpha1_ *= speed1, beta1_ *= speed1;
+  }
 }
 
 std::array<double, 3> LinearRibbon::profile(double s) const {
   if (blend_ == ScalarBlend::Quintic)
     return {s * s * s * (10 - 15 * s + 6 * s * s), 30 * s * s * (1 - s) * (1 - s), 60 * s * (1 - s) * (1 - 2 * s)};
   return {s, 1, 0};
+}
+
+LinearRibbon::Coefficients LinearRibbon::coefficients(double s, const std::array<Vec3, 4> &c) const {
+  const auto h = profile(s);
+  // Linear blend: the coefficients are those of the unit frame, so α, β of
+  // D and P' carry the factor g = 1 / |P'| (see setEndConditions).
+  double g = 1, dg = 0, ddg = 0;
+  if (blend_ == ScalarBlend::Linear) {
+    const double speed = norm(c[1]);
+    const double dSpeed = dot(c[1], c[2]) / speed;
+    const double ddSpeed = (dot(c[2], c[2]) + dot(c[1], c[3]) - dSpeed * dSpeed) / speed;
+    g = 1 / speed;
+    dg = -dSpeed * g * g;
+    ddg = (2 * dSpeed * dSpeed * g - ddSpeed) * g * g;
+  }
+  auto scaled = [&](double from, double to, double &v, double &dv, double &ddv) {
+    const double b = from + (to - from) * h[0], db = (to - from) * h[1], ddb = (to - from) * h[2];
+    v = g * b;
+    dv = dg * b + g * db;
+    ddv = ddg * b + 2 * dg * db + g * ddb;
+  };
+  Coefficients k;
+  scaled(alpha0_, alpha1_, k.alpha, k.dAlpha, k.ddAlpha);
+  scaled(beta0_, beta1_, k.beta, k.dBeta, k.ddBeta);
+  return k;
 }
 
 namespace {
@@ -266,10 +296,8 @@ RibbonJet LinearRibbon::jet(double s, const std::array<Vec3, 4> &c) const {
   dn = dn * dLocal;
   const Vec3 D = cross(n, c[1]);
   const Vec3 dD = cross(dn, c[1]) + cross(n, c[2]);
-  const auto h = profile(s);
-  const double alpha = alpha0_ + (alpha1_ - alpha0_) * h[0], beta = beta0_ + (beta1_ - beta0_) * h[0];
-  const double dAlpha = (alpha1_ - alpha0_) * h[1], dBeta = (beta1_ - beta0_) * h[1];
-  return {c[0], c[1], D * alpha + c[1] * beta, D * dAlpha + dD * alpha + c[1] * dBeta + c[2] * beta};
+  const Coefficients k = coefficients(s, c);
+  return {c[0], c[1], D * k.alpha + c[1] * k.beta, D * k.dAlpha + dD * k.alpha + c[1] * k.dBeta + c[2] * k.beta};
 }
 
 LinearRibbon::SecondJet LinearRibbon::secondJet(double s) const { return secondJet(s, curve_.derivatives(s)); }
@@ -285,10 +313,9 @@ LinearRibbon::SecondJet LinearRibbon::secondJet(double s, const std::array<Vec3,
   j.D = cross(j.N, j.dP);
   j.dD = cross(j.dN, j.dP) + cross(j.N, j.ddP);
   const Vec3 ddD = cross(j.ddN, j.dP) + 2.0 * cross(j.dN, j.ddP) + cross(j.N, j.dddP);
-  const auto h = profile(s);
-  j.alpha = alpha0_ + (alpha1_ - alpha0_) * h[0], j.beta = beta0_ + (beta1_ - beta0_) * h[0];
-  j.dAlpha = (alpha1_ - alpha0_) * h[1], j.dBeta = (beta1_ - beta0_) * h[1];
-  const double ddAlpha = (alpha1_ - alpha0_) * h[2], ddBeta = (beta1_ - beta0_) * h[2];
+  const Coefficients k = coefficients(s, c);
+  j.alpha = k.alpha, j.beta = k.beta, j.dAlpha = k.dAlpha, j.dBeta = k.dBeta;
+  const double ddAlpha = k.ddAlpha, ddBeta = k.ddBeta;
   j.T = j.D * j.alpha + j.dP * j.beta;
   j.dT = j.D * j.dAlpha + j.dD * j.alpha + j.dP * j.dBeta + j.ddP * j.beta;
   j.ddT = j.D * ddAlpha + j.dD * (2 * j.dAlpha) + ddD * j.alpha + j.dP * ddBeta + j.ddP * (2 * j.dBeta) +
