@@ -224,7 +224,8 @@ double sideRatio(const std::vector<PlanPiece> &outline) {
   double longest = 0, shortest = INFINITY;
   for (size_t k = 0; k < outline.size(); ++k) {
     const PlanPiece &piece = outline[k];
-    const double length = norm(piece.middle - piece.start) + norm(outline[(k + 1) % outline.size()].start - piece.middle);
+    const Vec2 &end = outline[(k + 1) % outline.size()].start;
+    const double length = norm(piece.middle - piece.start) + norm(end - piece.middle);
     longest = std::max(longest, length), shortest = std::min(shortest, length);
   }
   return longest / shortest;
@@ -550,7 +551,8 @@ private:
     for (const SideDescription &side : loop) {
       double length = 0;
       for (int j = 0; j < kChords; ++j)
-        length += norm(sidePoint(curves_, side, (j + 1.0) / kChords).point - sidePoint(curves_, side, double(j) / kChords).point);
+        length += norm(sidePoint(curves_, side, (j + 1.0) / kChords).point -
+                       sidePoint(curves_, side, double(j) / kChords).point);
       longest = std::max(longest, length), shortest = std::min(shortest, length);
     }
     return longest / shortest;
@@ -703,6 +705,10 @@ NetworkDescription insertConnectionCurves(const NetworkDescription &description,
       }
       parts = splitter.ring(face.sides, face.holes[0]);
     } else if (loopIsValid(description.curves, face.sides) && face.sides.size() >= 3) {
+      // A loop of more than kMaxPartSides sides is always split: a gap in it
+      // would be reported on parts the user never wrote.
+      if (face.sides.size() > static_cast<std::size_t>(kMaxPartSides) && std::isfinite(tolerance) && tolerance > 0)
+        requireClosed(description.curves, face.sides, tolerance, file, element);
       parts = splitter.wellShapedParts(face.sides);
     } else {
       parts = {face.sides};
