@@ -157,12 +157,16 @@ TEST(SplitLoops, ManySidedAndUnevenLoopsAreSplitAndSurfaced) {
 // The split description is explicit and idempotent: written and read back,
 // it builds the same network without a further split.
 TEST(SplitLoops, SplitDescriptionRoundTrips) {
-  const Network net = Network::build(builtinNetwork("many-sided"));
-  const NetworkDescription back = parseNetworkJson(networkToJson(net.description()));
-  EXPECT_EQ(back.faces.size(), net.faces().size());
-  const Network again = Network::build(back);
-  EXPECT_EQ(again.faces().size(), net.faces().size());
-  EXPECT_EQ(again.segments().size(), net.segments().size());
+  for (const std::string name : {"many-sided", "uneven-loop"}) {
+    SCOPED_TRACE(name);
+    const Network net = Network::build(builtinNetwork(name));
+    const NetworkDescription back = parseNetworkJson(networkToJson(net.description()));
+    EXPECT_EQ(back.faces.size(), net.faces().size());
+    const Network again = Network::build(back);
+    EXPECT_EQ(again.faces().size(), net.faces().size());
+    EXPECT_EQ(again.segments().size(), net.segments().size());
+    EXPECT_EQ(again.description().curves.size(), back.curves.size());
+  }
 }
 
 // Loops of more than 8 sides are refused by name when connection curves are

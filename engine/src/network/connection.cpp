@@ -709,7 +709,9 @@ NetworkDescription insertConnectionCurves(const NetworkDescription &description,
       // would be reported on parts the user never wrote.
       if (face.sides.size() > static_cast<std::size_t>(kMaxPartSides) && std::isfinite(tolerance) && tolerance > 0)
         requireClosed(description.curves, face.sides, tolerance, file, element);
-      parts = splitter.wellShapedParts(face.sides);
+      // A part of a split face (a split description read back) stays as it
+      // was split; only a concave corner would still be split.
+      parts = face.partOf >= 0 ? splitter.convexParts(face.sides) : splitter.wellShapedParts(face.sides);
     } else {
       parts = {face.sides};
     }
