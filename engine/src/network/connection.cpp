@@ -186,23 +186,26 @@ double newCornerClearance(const LoopPoint &a, const LoopPoint &b) {
 // least side ratio (plan lengths, the connection taken straight), among
 // those that leave each part kMinPartSides sides or more (a triangle cut off
 // a many-sided loop gave gregory-g2 folds), no part more sides than the
-// loop (for a loop of more than kMaxPartSides sides: the larger part as few
-// sides as any split gives, so a 12-gon halves into two 7-gons first), no
-// part whose fan from its centroid folds, no end on the midpoint of another
-// connection curve (an X-node of hidden curves: gregory-g2 deviated 15% of
-// the diagonal on the 12-gon with them), and the curve's four new corner
-// angles kMinEvenSplitAngle (30°) away from 0 and a straight angle: with
-// the concave splits' 6° the uneven loops were fanned from one corner into
-// wedges and gregory-g2 deviated 2.9% (8 sides) and 4.9% (10) from the
-// bowl; with 30°, 0.74% and 4.8%, gregory-g1 1.8–2.9%. An uneven loop of
-// at most kMaxPartSides sides takes it only if its worse part is more even
-// than the loop. The parts are split again in the same way (a 16-gon ends
-// in four parts of 5 and 6 sides). Choosing by the domain map's distortion
-// instead (the worst σ₁/σ₂ over the fan triangles, affine part taken out)
-// measured worse on balance: over loops of 9–16 sides gregory-g1 deviated
-// from the bowl by up to 3.7% of the diagonal against 2.5% (the 12-gon 1.6%
-// against 0.21%), and accepting splits by distortion too left the uneven
-// 8-gon unsplit.
+// loop, no part whose fan from its centroid folds, no end on the midpoint of
+// another connection curve (an X-node of hidden curves: gregory-g2 deviated
+// 15% of the diagonal on the 12-gon with them), and the curve's four new
+// corner angles kMinEvenSplitAngle (30°) away from 0 and a straight angle
+// (with the concave splits' 6° the uneven loops were fanned from one corner
+// into wedges, and gregory-g2 deviated 2.9% on the uneven 8-gon against
+// 0.74%). A loop of more than kMaxPartSides sides whose sides are even
+// takes the split whose larger part has the fewest sides first, so a 12-gon
+// halves into two 7-gons (most even parts first instead, gregory-g1
+// deviated up to 4.8% on the loops of 9–16 sides against 2.5%); an uneven
+// one takes the most even parts first (balanced parts first, gregory-g2
+// deviated 4.8% on the Fig. 9 10-gon against 1.2%). An uneven loop of at
+// most kMaxPartSides sides takes the split only if its worse part is more
+// even than the loop. The parts are split again in the same way (a 16-gon
+// ends in four parts of 5 and 6 sides). Choosing by the domain map's
+// distortion instead (the worst σ₁/σ₂ over the fan triangles, affine part
+// taken out) measured worse on balance: over loops of 9–16 sides gregory-g1
+// deviated from the bowl by up to 3.7% of the diagonal against 2.5% (the
+// 12-gon 1.6% against 0.21%), and accepting splits by distortion too left
+// the uneven 8-gon unsplit.
 constexpr double kUnevenSideRatio = 3.5;
 constexpr int kMaxPartSides = 8;
 constexpr int kMinPartSides = 4;
@@ -382,7 +385,8 @@ public:
     const std::vector<Vec2> plan = planSamples(loop, faceNormal);
     const int samples = static_cast<int>(plan.size());
     const bool manySided = n > kMaxPartSides;
-    if (!manySided && !(n >= 5 && sideLengthRatio(loop) > kUnevenSideRatio)) return {loop};
+    const bool uneven = n >= 5 && sideLengthRatio(loop) > kUnevenSideRatio;
+    if (!manySided && !uneven) return {loop};
     struct Candidate {
       int from, to;
       int sides;    // of the larger part
@@ -399,9 +403,11 @@ public:
         if (endsOnConnectionMidpoint(loop, a) || endsOnConnectionMidpoint(loop, b)) continue;
         candidates.push_back({a, b, more, std::max(sideRatio(first), sideRatio(second))});
       }
-    // A many-sided loop: the larger part's side count first.
-    std::sort(candidates.begin(), candidates.end(), [manySided](const Candidate &x, const Candidate &y) {
-      if (manySided && x.sides != y.sides) return x.sides < y.sides;
+    // A many-sided loop whose sides are even: the larger part's side count
+    // first (balanced parts); an uneven one: the most even parts first.
+    const bool balanced = manySided && !uneven;
+    std::sort(candidates.begin(), candidates.end(), [balanced](const Candidate &x, const Candidate &y) {
+      if (balanced && x.sides != y.sides) return x.sides < y.sides;
       return x.worse < y.worse;
     });
     // A many-sided loop takes the best split, an uneven one only a more even one.
