@@ -57,6 +57,13 @@ BuiltinData concaveL();
 /// `holeSides` arcs make the hole (the built-in `ring`: 4, each facing an
 /// outer corner).
 BuiltinData ring(int holeSides = 4);
+/// A loop of `sides` sides with all corners but two crowded on 100° of its
+/// turn (the built-in `uneven-loop`: 10; paper 000 Fig. 9), split by
+/// connection curves.
+BuiltinData unevenLoop(int sides = 10);
+/// A loop of `sides` sides inscribed in an ellipse (the built-in
+/// `many-sided`: 12), split by connection curves into parts of at most 8.
+BuiltinData manySidedLoop(int sides);
 
 // Master–slave vertex blend ([SV14] Sec. 5.1, Fig. 8), see setback.cpp.
 BuiltinData setbackVertexBlend();

@@ -50,6 +50,12 @@ const std::vector<Entry> &entries() {
       {{"ring", "a square face with a circular hole on the bowl z = 0.25x^2 + 0.15y^2; four connection curves "
                 "make it four quads (hidden)"},
        [] { return ring(); }},
+      {{"uneven-loop", "a 10-sided loop on the bowl z = 0.25x^2 + 0.15y^2, eight corners crowded on 100 degrees of "
+                       "its turn (Fig. 9); connection curves split it into even parts (hidden)"},
+       [] { return unevenLoop(); }},
+      {{"many-sided", "a 12-sided loop inscribed in an ellipse on the bowl z = 0.25x^2 + 0.15y^2; connection curves "
+                      "split it into parts of at most 8 sides (hidden)"},
+       [] { return manySidedLoop(12); }},
       {{"setback-vertex-blend", "box corner with cylindrical fillets of radii 0.30, 0.22, 0.38 (the masters) and a "
                                 "6-sided setback vertex blend G2 to all three (the slave); no reference surface"},
        [] { return setbackVertexBlend(); }},

@@ -13,11 +13,22 @@
 //  quarter arcs meeting at the diagonals (so each hole corner faces an outer
 //  corner); the hole is written clockwise, as holes usually are.
 //
+//  uneven-loop (Fig. 9): a loop of n sides (built-in: 10) inscribed in the
+//  unit circle, n − 2 of its corners crowded on 100° of the turn (n − 3
+//  short sides), the other two leaving three long sides of 260°/3; the
+//  regular domain stretches its long sides 5.5 times as much as its short
+//  ones (3.95 for n = 8).
+//
+//  many-sided: a loop of n sides (built-in: 12) inscribed in the ellipse
+//  with half-axes 1.2 and 1, corners at equal steps of the ellipse's angle
+//  parameter.
+//
 // Curves are lifts (x(t), y(t), z(x, y)) of lines and circle arcs, fitted
 // like every built-in; the bowl is the reference surface. Network::build
 // inserts the connection curves; no vertex facts are listed because the
 // vertices the connection curves end on are the builder's, not the
 // construction's.
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -71,6 +82,50 @@ NetworkDescription bowlNetwork(const std::string &name) {
 }
 
 } // namespace
+
+namespace {
+
+/// One face bounded by the lifted straight lines between consecutive plan
+/// corners (x, y).
+BuiltinData planPolygon(const std::string &name, const std::string &faceName,
+                        const std::vector<std::array<double, 2>> &corners) {
+  BuiltinData data;
+  data.network = bowlNetwork(name);
+  Bowl bowl{data.network};
+  FaceDescription face;
+  face.name = faceName;
+  const size_t n = corners.size();
+  for (size_t k = 0; k < n; ++k) {
+    const auto &[x0, y0] = corners[k];
+    const auto &[x1, y1] = corners[(k + 1) % n];
+    face.sides.push_back({bowl.line(x0, y0, x1, y1), 0.0, 1.0});
+  }
+  data.network.faces.push_back(face);
+  return data;
+}
+
+} // namespace
+
+BuiltinData unevenLoop(int sides) {
+  std::vector<std::array<double, 2>> corners;
+  auto cornerAt = [&](double degrees) {
+    const double a = degrees * std::numbers::pi / 180;
+    corners.push_back({std::cos(a), std::sin(a)});
+  };
+  const int crowded = sides - 3; // short sides, over 100°
+  for (int k = 0; k <= crowded; ++k) cornerAt(40 + k * 100.0 / crowded);
+  for (int k = 1; k <= 2; ++k) cornerAt(140 + k * 260.0 / 3);
+  return planPolygon("uneven-loop", "uneven", corners);
+}
+
+BuiltinData manySidedLoop(int sides) {
+  std::vector<std::array<double, 2>> corners;
+  for (int k = 0; k < sides; ++k) {
+    const double a = 2 * std::numbers::pi * k / sides;
+    corners.push_back({1.2 * std::cos(a), std::sin(a)});
+  }
+  return planPolygon("many-sided", std::to_string(sides) + "-sided", corners);
+}
 
 BuiltinData concaveL() {
   BuiltinData data;
