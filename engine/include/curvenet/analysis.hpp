@@ -135,7 +135,14 @@ struct VertexAnalysis {
   /// from xAxis. Its branch tells which case of Sec. 2 applied; with fewer
   /// than three independent curves it is a choice ([SV14] eq. 8), not a
   /// measurement of the surface.
+  ///
+  /// Where the directions leave part of the tensor undetermined (a near-X:
+  /// directions in nearly opposite pairs; clustered directions) or the fit
+  /// would exceed max|κ_i^n| plus twice the curves' disagreement, those modes come
+  /// from the curves' mean curvature instead, so the tensor stays bounded by
+  /// what the curves show; regularizedModes says how many (0: the paper's fit).
   CurvatureFit fit;
+  int regularizedModes = 0;
   Vec3 principalDirection1; ///< unit 3D direction of k1 (xAxis rotated by lambda)
   VertexVerdict verdict = VertexVerdict::G2Admissible;
 
