@@ -21,12 +21,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <random>
 
@@ -284,7 +286,9 @@ TEST(RobustnessCorpus, RepairMakesPerturbedVerticesAdmissibleWithoutMovingThem) 
   EXPECT_EQ(after.verdict, VertexVerdict::G2Admissible);
   // Minimal: a tangent turned by at most the perturbation (3°) plus the plane's own tilt.
   for (const RepairMove &m : repair.moves) {
-    if (m.kind == RepairKind::TangentPlane) EXPECT_LE(m.angle, 6.0 * pi / 180);
+    if (m.kind == RepairKind::TangentPlane) {
+      EXPECT_LE(m.angle, 6.0 * pi / 180);
+    }
     EXPECT_LE(m.sizeRelative, 0.05);
   }
 }
@@ -297,8 +301,15 @@ TEST(RobustnessCorpus, SharedDataFiles) {
     if (entry.path().extension() != ".lop") continue;
     ++files;
     const Network network = Network::build(loadNetworkInput(entry.path().string()), entry.path().string());
-    // Measured and printed; expectations for these come with the patch fixes.
-    runCase(entry.path().filename().string(), network, nullptr);
+    // Known files have their row (what holds today; the goal is kGoal for
+    // every scheme); another file is measured and printed only.
+    const std::string name = entry.path().filename().string();
+    const std::map<std::string, std::array<Expectation, 3>> known = {
+        {"pocket3sided.lop", {{{1, 1.05, inf, 1e-6}, kGoal, {1, 1.05, 1e-4, 1e-6}}}}, // the Gregory patches fold
+        {"cagd86.lop", {{kGoal, kGoal, kGoal}}},
+    };
+    const auto row = known.find(name);
+    runCase(name, network, row != known.end() ? row->second.data() : nullptr);
   }
   EXPECT_GT(files, 0);
 }
