@@ -313,3 +313,33 @@ TEST(RobustnessCorpus, SharedDataFiles) {
   }
   EXPECT_GT(files, 0);
 }
+
+// An edit that turns a tangent out of its plane is repaired on the way, and
+// the rebuild stays partial: the repaired edit differs from the repaired
+// surface's network near the edited curve only. The result is a full build's.
+TEST(RobustnessCorpus, RepairedEditRebuildsPartially) {
+  const NetworkDescription description = builtinNetwork(kBase);
+  const Network network = Network::build(description);
+  const Surface before = Surface::build(network, {Scheme::GregoryG1});
+  ASSERT_TRUE(before.repairMoves().empty());
+  NetworkDescription turned = description;
+  std::mt19937 rng(7);
+  BSplineCurve &c = turned.curves[0];
+  std::vector<Vec3> p = c.controlPoints();
+  p[1] = p[0] + rotated(p[1] - p[0], randomPerpendicular(p[1] - p[0], rng), 2 * pi / 180);
+  c = withPoints(c, std::move(p));
+  const Network edited = Network::build(turned);
+  const SurfaceEdit edit = before.rebuildAfterEdit(edited);
+  EXPECT_TRUE(edit.partial);
+  EXPECT_LT(edit.changedFaces.size(), size_t(network.faces().size()));
+  EXPECT_FALSE(edit.surface.repairMoves().empty());
+  const Surface full = Surface::build(edited, {Scheme::GregoryG1});
+  EXPECT_EQ(edit.surface.repairMoves().size(), full.repairMoves().size());
+  for (int f = 0; f < full.faceCount(); ++f)
+    for (const Vec2 &uv : {Vec2{0, 0}, Vec2{0.3, 0.2}, Vec2{-0.4, 0.1}}) {
+      const SurfacePoint a = edit.surface.evaluate(f, uv), b = full.evaluate(f, uv);
+      EXPECT_EQ(norm(a.point - b.point), 0.0) << "face " << f;
+      EXPECT_EQ(norm(a.normal - b.normal), 0.0) << "face " << f;
+    }
+  EXPECT_LE(measureContinuity(edit.surface, {8}).maxNormalAngleDeg, 1e-6);
+}

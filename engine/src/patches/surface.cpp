@@ -695,10 +695,15 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
 
 SurfaceEdit Surface::rebuildAfterEdit(const Network &edited) const {
   const Impl &old = *impl_;
-  // An edit the vertex repair changes is built in full (the repair is global).
-  if (old.options.curves == CurveHandling::Repaired &&
-      repairNetwork(edited, repairOptionsFor(old.options.scheme)).changed())
-    return {build(edited, old.options), allIndices(edited.faces().size()), false};
+  // The vertex repair first, as in build: the repaired edit differs from this
+  // surface's (repaired) network near the edit only, so the rebuild below
+  // stays partial; repairing it again changes nothing.
+  if (old.options.curves == CurveHandling::Repaired)
+    if (RepairResult repair = repairNetwork(edited, repairOptionsFor(old.options.scheme)); repair.changed()) {
+      SurfaceEdit result = rebuildAfterEdit(Network::build(repair.network, edited.name()));
+      std::const_pointer_cast<Impl>(result.surface.impl_)->repairMoves = std::move(repair.moves); // not shared yet
+      return result;
+    }
   // Kept G¹ master faces: a full build (their fences and patches come from
   // the G¹ surface, which an edit rebuilds in part by itself).
   const bool partial = !old.bezier && old.keptG1.empty() && old.origin == Vec3{} && !needsOriginShift(edited) &&
@@ -717,6 +722,7 @@ SurfaceEdit Surface::rebuildAfterEdit(const Network &edited) const {
   changed = sortedUnique(std::move(changed));
 
   auto impl = std::make_shared<Impl>(old);
+  impl->repairMoves.clear(); // the caller (above) sets the moves of this edit's repair
   impl->network = edited;
   // The frames and curvatures of the changed segments' end vertices (every
   // curve at a vertex enters its tangent plane and curvature fit); then the
