@@ -240,8 +240,37 @@ static void keptMasters(void) {
   curvenet_model_destroy(b);
 }
 
+/* The shape figures and the curve handling: under gregory-g2 the sphere
+ * dodecahedron is 12 unfolded sphere caps (fairness 2: κ1² + κ2² = 2/R²
+ * against the great circles' 1/R²) and needs no repair; an out-of-range
+ * curves value is refused. */
+static void shape(void) {
+  curvenet_model *model = NULL;
+  curvenet_status status;
+  curvenet_surface_options options;
+  curvenet_surface_options_init(&options);
+  EXPECT(options.curves == CURVENET_CURVES_REPAIRED);
+  options.scheme = CURVENET_GREGORY_G2;
+  EXPECT(curvenet_model_load("builtin:sphere-dodecahedron", &options, &model, &status) == CURVENET_OK);
+  curvenet_shape figures;
+  EXPECT(curvenet_model_shape(model, &figures, &status) == CURVENET_OK);
+  EXPECT(figures.folded_faces == 0 && figures.rejected_faces == 0 && figures.repair_moves == 0);
+  EXPECT(figures.max_excursion >= 0 && figures.max_excursion <= figures.excursion_bound);
+  EXPECT(fabs(figures.fairness - 2.0) < 0.1);
+  int folded = -1;
+  double excursion = -1, fairness = -1;
+  EXPECT(curvenet_model_face_shape(model, 3, &folded, &excursion, &fairness, &status) == CURVENET_OK);
+  EXPECT(folded == 0 && excursion >= 0 && fabs(fairness - 2.0) < 0.1);
+  EXPECT(curvenet_model_face_shape(model, 12, NULL, NULL, NULL, &status) == CURVENET_INVALID_ARGUMENT);
+  EXPECT(curvenet_model_shape(model, NULL, &status) == CURVENET_INVALID_ARGUMENT);
+  curvenet_model_destroy(model);
+  options.curves = (curvenet_curves)7;
+  EXPECT(curvenet_model_load("builtin:pentagon", &options, &model, &status) == CURVENET_INVALID_ARGUMENT);
+}
+
 int main(void) {
   loopAndEvaluate();
+  shape();
   errors();
   twoFaces();
   keptMasters();

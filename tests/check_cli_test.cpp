@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <sys/wait.h>
@@ -132,4 +133,99 @@ TEST_F(CheckCli, ThreadCountDoesNotChangeTheReport) {
   ASSERT_EQ(two.exitCode, 0) << two.out;
   EXPECT_EQ(one.out, two.out);
   EXPECT_NE(runCli("check builtin:pentagon --threads -1").exitCode, 0);
+}
+
+namespace {
+
+/// The sphere dodecahedron with both end tangents of curve 0 turned 2° out
+/// of their vertex planes (the second control point rotated about the end).
+NetworkDescription turnedDodecahedron() {
+  NetworkDescription d = builtinNetwork("sphere-dodecahedron");
+  BSplineCurve &c = d.curves[0];
+  std::vector<Vec3> p = c.controlPoints();
+  const double angle = 2 * std::numbers::pi / 180;
+  for (size_t at : {size_t(0), p.size() - 1}) {
+    const size_t next = at == 0 ? 1 : p.size() - 2;
+    const Vec3 arm = p[next] - p[at], normal = normalized(p[at]); // the sphere's normal
+    const Vec3 axis = normalized(cross(arm, normal));
+    p[next] = p[at] + arm * std::cos(angle) + cross(axis, arm) * std::sin(angle);
+  }
+  c = BSplineCurve(c.degree(), c.knots(), std::move(p), c.weights());
+  d.reference.reset();
+  return d;
+}
+
+} // namespace
+
+TEST_F(CheckCli, RepairedCurvesListEveryMoveAndKeptCurvesNone) {
+  const fs::path input = dir / "turned.json";
+  writeFileAtomically(input.string(), [&](std::ostream &out) { out << networkToJson(turnedDodecahedron()); });
+  const CliRun repaired = runCli("check " + input.string() + " --json --scheme gregory-g2");
+  ASSERT_EQ(repaired.exitCode, 0) << repaired.err;
+  const auto report = nlohmann::json::parse(repaired.out);
+  EXPECT_EQ(report["analysis"]["verdict"], "no-tangent-plane"); // the input's
+  const auto &moves = report["repair"]["moves"];
+  ASSERT_FALSE(moves.empty());
+  bool tangent = false, curvature = false;
+  for (const auto &m : moves) {
+    for (const char *key : {"vertex", "curve", "kind", "size", "size_relative"}) ASSERT_TRUE(m.contains(key)) << key;
+    tangent |= m["kind"] == "tangent-plane";
+    curvature |= m["kind"] == "curvature";
+    EXPECT_LE(m["size_relative"].get<double>(), 0.01);
+  }
+  EXPECT_TRUE(tangent);
+  // Three curves fit Euler's formula exactly, so gregory-g2 needs no tweak here.
+  EXPECT_FALSE(curvature);
+  // The continuity figures are those of the repaired network: G¹ holds.
+  EXPECT_LE(report["continuity"]["max_normal_angle_deg"].get<double>(), 1e-6);
+
+  const CliRun g1 = runCli("check " + input.string() + " --json");
+  ASSERT_EQ(g1.exitCode, 0) << g1.err;
+  for (const auto &m : nlohmann::json::parse(g1.out)["repair"]["moves"]) EXPECT_EQ(m["kind"], "tangent-plane");
+
+  const CliRun kept = runCli("check " + input.string() + " --json --curves kept");
+  ASSERT_EQ(kept.exitCode, 0) << kept.err;
+  const auto keptReport = nlohmann::json::parse(kept.out);
+  EXPECT_TRUE(keptReport["repair"]["moves"].empty());
+  EXPECT_EQ(keptReport["repair"]["curves"], "kept");
+  // Without a tangent plane at two vertices the surface cannot be G¹ there.
+  EXPECT_GT(keptReport["continuity"]["max_normal_angle_deg"].get<double>(), 0.1);
+  EXPECT_NE(runCli("check builtin:pentagon --curves bent").exitCode, 0);
+}
+
+TEST_F(CheckCli, ShapeReportAndStrictRefusal) {
+  const CliRun good = runCli("check builtin:sphere-dodecahedron --json --scheme gregory-g2");
+  ASSERT_EQ(good.exitCode, 0) << good.err;
+  const auto goodReport = nlohmann::json::parse(good.out);
+  const auto &shape = goodReport["shape"];
+  EXPECT_TRUE(shape["acceptable"].get<bool>());
+  ASSERT_EQ(shape["faces"].size(), 12u);
+  for (const auto &f : shape["faces"]) {
+    EXPECT_FALSE(f["folded"].get<bool>());
+    EXPECT_LE(f["excursion"].get<double>(), 0.05);
+    // gregory-g2 reproduces the sphere caps: κ1² + κ2² = 2/R² against the
+    // great circles' 1/R² (gregory-g1's corner twists give 3.7).
+    EXPECT_NEAR(f["fairness"].get<double>(), 2.0, 0.1);
+  }
+  EXPECT_EQ(runCli("check builtin:sphere-dodecahedron --strict").exitCode, 0);
+
+  // The turned network on its curves as given, under gregory-g2: whatever the
+  // report says, --strict must agree with it and write nothing on refusal.
+  const fs::path input = dir / "turned.json", mesh = dir / "turned.obj";
+  writeFileAtomically(input.string(), [&](std::ostream &out) { out << networkToJson(turnedDodecahedron()); });
+  const std::string args = input.string() + " --scheme gregory-g2 --curves kept";
+  const CliRun report = runCli("check " + args + " --json");
+  ASSERT_EQ(report.exitCode, 0) << report.err;
+  const bool acceptable = nlohmann::json::parse(report.out)["shape"]["acceptable"].get<bool>();
+  const CliRun strict = runCli("tessellate " + args + " --strict --resolution 4 -o " + mesh.string());
+  EXPECT_EQ(strict.exitCode, acceptable ? 0 : 1) << strict.err;
+  EXPECT_EQ(fs::exists(mesh), acceptable);
+  if (!acceptable) {
+    EXPECT_NE(strict.err.find("--strict writes nothing"), std::string::npos) << strict.err;
+    const CliRun lenient = runCli("tessellate " + args + " --resolution 4 -o " + mesh.string());
+    EXPECT_EQ(lenient.exitCode, 0) << lenient.err;
+    EXPECT_NE(lenient.err.find("warning"), std::string::npos);
+    EXPECT_TRUE(fs::exists(mesh));
+    EXPECT_EQ(runCli("check " + args + " --strict").exitCode, 1);
+  }
 }

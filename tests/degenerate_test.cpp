@@ -132,10 +132,19 @@ TEST(Degenerate, VertexWithoutCommonTangentPlane) {
   for (size_t v = 0; v < network.vertices().size(); ++v)
     if (norm(network.vertices()[v].position) < 1e-12) centre = static_cast<int>(v);
   ASSERT_GE(centre, 0);
-  const Surface surface = Surface::build(network, {Scheme::GregoryG1});
+  SurfaceOptions kept{Scheme::GregoryG1};
+  kept.curves = CurveHandling::Kept;
+  const Surface surface = Surface::build(network, kept);
   EXPECT_GT(surface.vertexResidualAngle(centre), 0.1); // radians: the spoke is ~25° out of plane
   EXPECT_EQ(analyzeVertex(network, centre).verdict, VertexVerdict::NoTangentPlane);
   EXPECT_GT(measureContinuity(surface, {8}).maxNormalAngleDeg, 1.0);
+  // By default the spokes' end tangents are turned into the fitted plane
+  // (the vertex stays put), and the surface is G¹ there.
+  const Surface repaired = Surface::build(network, {Scheme::GregoryG1});
+  EXPECT_FALSE(repaired.repairMoves().empty());
+  EXPECT_LE(repaired.vertexResidualAngle(centre), 1e-12);
+  EXPECT_EQ(norm(repaired.network().vertices()[size_t(centre)].position), 0.0);
+  EXPECT_LE(measureContinuity(repaired, {8}).maxNormalAngleDeg, 1e-6);
 }
 
 // A 2-sided face: handled as a 4-sided patch split at the curves' middles.

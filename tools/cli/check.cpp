@@ -1,4 +1,4 @@
-// curvenet check INPUT [--scheme S] [--masters M] [--json] [--threads T] [--tweak -o FILE] — network
+// curvenet check INPUT [--scheme S] [--masters M] [--curves C] [--strict] [--json] [--threads T] [--tweak -o FILE] — network
 // analysis (vertex enclosure, Euler constraint, curvature fit per vertex),
 // optionally the tweaked network, and the continuity and reference figures
 // of the surface built with scheme S.
@@ -34,7 +34,9 @@ nlohmann::json checkReport(const Network &network, const std::string &input, con
   addVertexAnalysis(report, analyzeNetwork(network));
   const Surface surface = Surface::build(network, options.surface);
   warnAboutFolds(surface);
-  addSurfaceReport(report, surface, options.samples, options.resolution);
+  const ShapeReport shape = measureShape(surface);
+  enforceShape(surface, shape, options.strict);
+  addSurfaceReport(report, surface, shape, options.samples, options.resolution);
   if (options.surface.scheme == Scheme::BezierG1) {
     // [OSK11]'s comparison: the C⁰ Coons patches of the same network beside the G¹ figures.
     nlohmann::json coons;
@@ -47,10 +49,10 @@ nlohmann::json checkReport(const Network &network, const std::string &input, con
 Command addCheckCommand(CLI::App &app) {
   struct Options {
     std::string input;
-    std::string scheme = "gregory-g1", masters = "rebuilt";
+    std::string scheme = "gregory-g1", masters = "rebuilt", curves = "repaired";
     int samples = 64, resolution = 32, threads = 0;
     bool json = false;
-    bool tweak = false, quiet = false;
+    bool tweak = false, quiet = false, strict = false;
     std::string output;
   };
   auto options = std::make_shared<Options>();
@@ -60,6 +62,8 @@ Command addCheckCommand(CLI::App &app) {
   sub->add_option("--scheme", options->scheme, "surface scheme whose continuity is measured")
       ->capture_default_str();
   addMastersOption(sub, options->masters);
+  addCurvesOption(sub, options->curves);
+  addStrictFlag(sub, options->strict);
   sub->add_option("--samples", options->samples, "points per segment for the continuity figures")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
@@ -80,14 +84,13 @@ Command addCheckCommand(CLI::App &app) {
             // figures do not depend on it.
             std::optional<tbb::global_control> limit;
             if (options->threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, options->threads);
-            const SurfaceOptions surfaceOptions = parseSurfaceOptions(options->scheme, options->masters);
+            const SurfaceOptions surfaceOptions =
+                parseSurfaceOptions(options->scheme, options->masters, options->curves);
             const Network network = Network::build(loadNetworkInput(options->input), options->input);
-            // The tweak goes first: a failed write stops before the surface work.
-            nlohmann::json tweakReport;
-            if (options->tweak) runTweak(network, options->output, tweakReport);
-            nlohmann::json report =
-                checkReport(network, options->input, {surfaceOptions, options->samples, options->resolution});
-            if (options->tweak) report["tweak"] = tweakReport["tweak"];
+            // The surface first: --strict refuses before --tweak writes its file.
+            nlohmann::json report = checkReport(
+                network, options->input, {surfaceOptions, options->samples, options->resolution, options->strict});
+            if (options->tweak) runTweak(network, options->output, report);
             if (options->json) std::printf("%s\n", report.dump(2).c_str());
             else printReportTable(report);
             return 0;

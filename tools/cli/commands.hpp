@@ -8,6 +8,7 @@
 #include <string>
 
 #include "curvenet/mesh.hpp"
+#include "curvenet/shape.hpp"
 #include "curvenet/surface.hpp"
 #include "render.hpp"
 
@@ -31,9 +32,15 @@ Command addApproximateCommand(CLI::App &app);
 Scheme parseScheme(const std::string &name);
 /// `--masters rebuilt|kept-g1` (what gregory-g2 builds over master faces) on `sub`.
 void addMastersOption(CLI::App *sub, std::string &masters);
-/// The surface options for --scheme and --masters values; InputError for an
-/// unknown name, or kept-g1 with a scheme other than gregory-g2.
-SurfaceOptions parseSurfaceOptions(const std::string &scheme, const std::string &masters);
+/// `--curves repaired|kept` (SurfaceOptions::curves) on `sub`.
+void addCurvesOption(CLI::App *sub, std::string &curves);
+/// `--strict` on `sub`: a surface that folds or leaves its boundary's box
+/// (curvenet/shape.hpp) fails the command before anything is written.
+void addStrictFlag(CLI::App *sub, bool &strict);
+/// The surface options for --scheme, --masters and --curves values;
+/// InputError for an unknown name, or kept-g1 with a scheme other than gregory-g2.
+SurfaceOptions parseSurfaceOptions(const std::string &scheme, const std::string &masters,
+                                   const std::string &curves = "repaired");
 
 /// A picture with the mesh it shows and the render time (seconds).
 struct RenderedPicture {
@@ -50,6 +57,12 @@ RenderedPicture renderPicture(const Surface &surface, const render::RenderOption
 void printPictureLine(const std::string &path, const RenderedPicture &picture);
 /// One stderr warning per face whose patch folds (Surface::foldedFaces).
 void warnAboutFolds(const Surface &surface);
+/// One stderr warning per face whose excursion exceeds kExcursionBound
+/// (folds: warnAboutFolds); with `strict`, an InputError naming the rejected
+/// faces instead, when there are any.
+void enforceShape(const Surface &surface, const ShapeReport &shape, bool strict);
+/// "curvenet: repaired the curves at N vertices (M control points, largest move X of the diagonal)" on stderr.
+void noteRepair(const Surface &surface);
 
 /// Memory a mesh of `vertices` needs while being built (and written as text).
 double estimateMeshBytes(std::size_t vertices, bool writesText);

@@ -59,9 +59,9 @@ void printPictureLine(const std::string &path, const RenderedPicture &p) {
 
 Command addRenderCommand(CLI::App &app) {
   struct Options {
-    std::string input, output, scheme = "gregory-g1", masters = "rebuilt", mode = "reflection", size = "800x600", view = "30,30";
+    std::string input, output, scheme = "gregory-g1", masters = "rebuilt", curves = "repaired", mode = "reflection", size = "800x600", view = "30,30";
     double stripes = 8;
-    bool boundaries = false, quiet = false;
+    bool boundaries = false, quiet = false, strict = false;
     int resolution = 32, threads = 0;
   };
   auto o = std::make_shared<Options>();
@@ -71,6 +71,8 @@ Command addRenderCommand(CLI::App &app) {
       ->required();
   sub->add_option("--scheme", o->scheme, "gregory-g1 | composite-ribbon");
   addMastersOption(sub, o->masters);
+  addCurvesOption(sub, o->curves);
+  addStrictFlag(sub, o->strict);
   sub->add_option("--mode", o->mode, "reflection | isophote | mean | gauss");
   sub->add_option("--size", o->size, "image size WxH (default 800x600)");
   sub->add_option("--view", o->view, "camera azimuth,elevation in degrees (default 30,30)");
@@ -85,7 +87,7 @@ Command addRenderCommand(CLI::App &app) {
             const std::string ext = std::filesystem::path(o->output).extension().string();
             if (ext != ".png" && ext != ".exr" && ext != ".PNG" && ext != ".EXR")
               throw InputError(o->output, {}, "unknown image extension \"" + ext + "\" (expected .png or .exr)");
-            const SurfaceOptions surfaceOptions = parseSurfaceOptions(o->scheme, o->masters);
+            const SurfaceOptions surfaceOptions = parseSurfaceOptions(o->scheme, o->masters, o->curves);
             render::RenderOptions r;
             if (auto m = render::modeFromName(o->mode)) r.mode = *m;
             else throw InputError("", "--mode", "unknown mode '" + o->mode + "'; available: reflection, isophote, mean, gauss");
@@ -110,6 +112,8 @@ Command addRenderCommand(CLI::App &app) {
             const Network network = Network::build(loadNetworkInput(o->input), o->input);
             const Surface surface = Surface::build(network, surfaceOptions);
             warnAboutFolds(surface);
+            noteRepair(surface);
+            enforceShape(surface, measureShape(surface), o->strict);
             const RenderedPicture picture = renderPicture(surface, r, o->resolution, progressWanted(o->quiet));
             render::writeImage(picture.image, o->output);
             printPictureLine(o->output, picture);

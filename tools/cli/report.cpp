@@ -8,6 +8,7 @@
 
 #include "curvenet/continuity.hpp"
 #include "curvenet/curvature_jump.hpp"
+#include "curvenet/shape.hpp"
 
 namespace curvenet::cli {
 
@@ -78,8 +79,55 @@ void addCompositeFaces(nlohmann::json &report, const Surface &surface, const Cur
 
 } // namespace
 
+nlohmann::json repairReport(const Surface &surface) {
+  nlohmann::json moves = nlohmann::json::array();
+  double largest = 0;
+  for (const RepairMove &m : surface.repairMoves()) {
+    moves.push_back({{"vertex", m.vertex},
+                     {"curve", m.curve},
+                     {"kind", toString(m.kind)},
+                     {"size", m.size},
+                     {"size_relative", m.sizeRelative},
+                     {"angle_deg", m.angle * 180 / std::numbers::pi}});
+    largest = std::max(largest, m.sizeRelative);
+  }
+  return {{"curves", curveHandlingName(surface.options().curves)},
+          {"moves", std::move(moves)},
+          {"max_move_relative", largest},
+          {"note", "control points moved by the vertex repair (tangent-plane: end tangent turned into the vertex "
+                   "plane; curvature: normal curvature set to the fitted tensor); sizes relative to the diagonal; "
+                   "vertices never move"}};
+}
+
+nlohmann::json shapeReport(const ShapeReport &shape) {
+  nlohmann::json faces = nlohmann::json::array();
+  for (const FaceShape &f : shape.faces)
+    faces.push_back({{"face", f.face}, {"folded", f.folded}, {"excursion", f.excursion}, {"fairness", f.fairness}});
+  return {{"folded_faces", shape.foldedFaces},
+          {"max_excursion", shape.maxExcursion},
+          {"worst_excursion_face", shape.worstExcursionFace},
+          {"excursion_bound", kExcursionBound},
+          {"fairness", shape.fairness},
+          {"max_fairness", shape.maxFairness},
+          {"worst_fairness_face", shape.worstFairnessFace},
+          {"rejected_faces", shape.rejectedFaces},
+          {"acceptable", shape.acceptable()},
+          {"faces", std::move(faces)},
+          {"definitions", "excursion: growth of the bounding-box diagonal of the face's boundary curves when its "
+                          "patch samples are added, relative to the model diagonal; fairness: area mean of "
+                          "k1^2 + k2^2 over the face divided by the arc-length mean of k^2 along its boundary "
+                          "(2 for a sphere-cap face); rejected: folded or excursion above the bound"}};
+}
+
 void addSurfaceReport(nlohmann::json &report, const Surface &surface, int samplesPerSegment, int resolution) {
+  addSurfaceReport(report, surface, measureShape(surface), samplesPerSegment, resolution);
+}
+
+void addSurfaceReport(nlohmann::json &report, const Surface &surface, const ShapeReport &shape,
+                      int samplesPerSegment, int resolution) {
   report["scheme"] = schemeName(surface.options().scheme);
+  report["repair"] = repairReport(surface);
+  report["shape"] = shapeReport(shape);
   if (surface.options().scheme == Scheme::GregoryG2) {
     report["master_faces"] = masterFacesName(surface.options().masterFaces);
     std::vector<int> kept;
@@ -275,6 +323,20 @@ void printReportTable(const nlohmann::json &report) {
     std::printf("\ncontinuity (%s%s):\n", report.value("scheme", std::string("?")).c_str(), kept.c_str());
     for (auto &[key, value] : c.items())
       if (value.is_number()) std::printf("  %-28s %.6g\n", key.c_str(), value.get<double>());
+  }
+  if (report.contains("repair") && !report["repair"]["moves"].empty()) {
+    const auto &r = report["repair"];
+    std::printf("\nvertex repair (--curves %s): %zu control points moved, largest %.3g of the diagonal (--json lists "
+                "every move)\n",
+                r["curves"].get<std::string>().c_str(), r["moves"].size(), r["max_move_relative"].get<double>());
+  }
+  if (report.contains("shape")) {
+    const auto &sh = report["shape"];
+    std::printf("\nshape: %zu folded faces, max excursion %.3g of the diagonal (face %d, bound %.3g), fairness %.3g "
+                "(max %.3g, face %d)%s\n",
+                sh["folded_faces"].size(), sh["max_excursion"].get<double>(), sh["worst_excursion_face"].get<int>(),
+                sh["excursion_bound"].get<double>(), sh["fairness"].get<double>(), sh["max_fairness"].get<double>(),
+                sh["worst_fairness_face"].get<int>(), sh["acceptable"].get<bool>() ? "" : " — REJECTED faces listed in --json");
   }
   if (report.contains("composite_faces")) {
     std::printf("\ncomposite faces (split by hidden connection curves; %d user faces):\n", report["faces"].get<int>());

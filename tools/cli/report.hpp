@@ -7,6 +7,7 @@
 
 #include "curvenet/analysis.hpp"
 #include "curvenet/network.hpp"
+#include "curvenet/shape.hpp"
 #include "curvenet/surface.hpp"
 
 namespace curvenet::cli {
@@ -22,7 +23,15 @@ nlohmann::json networkReport(const Network &network, const std::string &input);
 /// face, `masters[]` with per master edge `edge` (segment), `curve`,
 /// `master_face`, `master_name`, `slave_face`, `max_curvature_jump`,
 /// `mean_curvature_jump` and `samples`.
+///
+/// Also `repair` (SurfaceOptions::curves and every move of the vertex
+/// repair: vertex, curve, kind, size, size_relative, angle_deg) and `shape`
+/// (curvenet/shape.hpp: folded faces, excursion and fairness per face and
+/// overall, the faces rejected by --strict).
 void addSurfaceReport(nlohmann::json &report, const Surface &surface, int samplesPerSegment, int resolution);
+/// The same with the shape already measured.
+void addSurfaceReport(nlohmann::json &report, const Surface &surface, const ShapeReport &shape, int samplesPerSegment,
+                      int resolution);
 
 /// Adds the vertex analysis (curvenet/analysis.hpp) to a networkReport: per
 /// vertex `enclosure_residual`, `euler_residual` (both relative to the
@@ -43,11 +52,14 @@ struct CheckOptions {
   SurfaceOptions surface;
   int samples = 64;
   int resolution = 32;
+  /// Refuse (InputError) when a face folds or leaves its boundary's box (`--strict`).
+  bool strict = false;
 };
 
 /// The object `curvenet check --json` prints (without `tweak`): the
 /// networkReport of `network` read from `input`, its vertex analysis, the
-/// surface report for `options` and, for bezier-g1, the coons-c0 `baseline`.
+/// surface report for `options` (with its shape figures) and, for bezier-g1,
+/// the coons-c0 `baseline`.
 /// Throws InputError when the surface cannot be built.
 nlohmann::json checkReport(const Network &network, const std::string &input, const CheckOptions &options);
 

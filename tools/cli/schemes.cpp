@@ -1,4 +1,5 @@
 // Scheme names on the command line (docs/design.md §6).
+#include <algorithm>
 #include <cstdio>
 
 #include "commands.hpp"
@@ -20,7 +21,20 @@ void addMastersOption(CLI::App *sub, std::string &masters) {
       ->capture_default_str();
 }
 
-SurfaceOptions parseSurfaceOptions(const std::string &scheme, const std::string &masters) {
+void addCurvesOption(CLI::App *sub, std::string &curves) {
+  sub->add_option("--curves", curves,
+                  "repaired (turn end tangents into the vertex tangent plane where they leave it; gregory-g2 also "
+                  "tweaks curvatures to the fitted vertex tensor) | kept (the curves as given)")
+      ->capture_default_str();
+}
+
+void addStrictFlag(CLI::App *sub, bool &strict) {
+  sub->add_flag("--strict", strict,
+                "fail (exit 1, writing nothing) when a face folds or its excursion exceeds " +
+                    std::to_string(int(kExcursionBound * 100)) + "% of the diagonal");
+}
+
+SurfaceOptions parseSurfaceOptions(const std::string &scheme, const std::string &masters, const std::string &curves) {
   SurfaceOptions options;
   options.scheme = parseScheme(scheme);
   const std::optional<MasterFaces> m = masterFacesFromName(masters);
@@ -31,6 +45,10 @@ SurfaceOptions parseSurfaceOptions(const std::string &scheme, const std::string 
   if (*m != MasterFaces::Rebuilt && options.scheme != Scheme::GregoryG2)
     throw InputError("", "--masters", masters + " needs --scheme gregory-g2 (other schemes build every face alike)");
   options.masterFaces = *m;
+  const std::optional<CurveHandling> c = curveHandlingFromName(curves);
+  if (!c)
+    throw InputError("", "--curves", "unknown value '" + curves + "'; available: repaired, kept");
+  options.curves = *c;
   return options;
 }
 
@@ -40,6 +58,44 @@ void warnAboutFolds(const Surface &surface) {
                  "curvenet: warning: face %d: the %s patch folds over itself (its normal turns over inside the face); "
                  "split the face with an extra curve or try another scheme\n",
                  face, schemeName(surface.faceOptions(face).scheme).c_str());
+}
+
+} // namespace curvenet::cli
+
+namespace curvenet::cli {
+
+void enforceShape(const Surface &surface, const ShapeReport &shape, bool strict) {
+  std::string rejected;
+  for (int f : shape.rejectedFaces) {
+    const FaceShape &face = shape.faces[size_t(f)];
+    rejected += (rejected.empty() ? "" : ", ") + std::to_string(f);
+    if (!strict && !face.folded)
+      std::fprintf(stderr,
+                   "curvenet: warning: face %d: the %s patch leaves its boundary's box by %.3g of the diagonal "
+                   "(bound %.3g)\n",
+                   f, schemeName(surface.faceOptions(f).scheme).c_str(), face.excursion, kExcursionBound);
+  }
+  if (strict && !rejected.empty())
+    throw InputError("", "faces " + rejected,
+                     "the surface folds or leaves its boundary's box by more than " +
+                         std::to_string(kExcursionBound) + " of the diagonal (largest excursion " +
+                         std::to_string(shape.maxExcursion) + ", " + std::to_string(shape.foldedFaces.size()) +
+                         " folded faces); --strict writes nothing");
+}
+
+void noteRepair(const Surface &surface) {
+  const std::vector<RepairMove> &moves = surface.repairMoves();
+  if (moves.empty()) return;
+  std::vector<int> vertices;
+  double largest = 0;
+  for (const RepairMove &m : moves) {
+    if (std::find(vertices.begin(), vertices.end(), m.vertex) == vertices.end()) vertices.push_back(m.vertex);
+    largest = std::max(largest, m.sizeRelative);
+  }
+  std::fprintf(stderr,
+               "curvenet: repaired the curves at %zu vertices (%zu control points moved, largest move %.3g of the "
+               "diagonal; --curves kept builds on the curves as given)\n",
+               vertices.size(), moves.size(), largest);
 }
 
 } // namespace curvenet::cli

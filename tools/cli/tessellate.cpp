@@ -1,4 +1,4 @@
-// curvenet tessellate INPUT -o FILE.{obj,ply} [--scheme S] [--masters M] [--resolution R] [--threads T]
+// curvenet tessellate INPUT -o FILE.{obj,ply} [--scheme S] [--masters M] [--curves C] [--strict] [--resolution R] [--threads T]
 // and curvenet demo [--out DIR]: the default network's mesh and report.
 #include <cstdio>
 #include <filesystem>
@@ -17,9 +17,9 @@ namespace curvenet::cli {
 
 Command addTessellateCommand(CLI::App &app) {
   struct Options {
-    std::string input, output, scheme = "gregory-g1", masters = "rebuilt", controlNets;
+    std::string input, output, scheme = "gregory-g1", masters = "rebuilt", curves = "repaired", controlNets;
     int resolution = 16, threads = 0;
-    bool quiet = false;
+    bool quiet = false, strict = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App *sub = app.add_subcommand("tessellate", "Tessellate every face into one watertight mesh");
@@ -27,18 +27,22 @@ Command addTessellateCommand(CLI::App &app) {
   sub->add_option("-o,--output", o->output, "output mesh (.obj or .ply)")->required();
   sub->add_option("--scheme", o->scheme, "gregory-g1 | composite-ribbon | bezier-g1 | coons-c0");
   addMastersOption(sub, o->masters);
+  addCurvesOption(sub, o->curves);
+  addStrictFlag(sub, o->strict);
   sub->add_option("--control-nets", o->controlNets, "also write the quintic control nets as JSON (bezier-g1, coons-c0)");
   sub->add_option("--resolution", o->resolution, "intervals per segment")->check(CLI::Range(1, 4096));
   sub->add_option("--threads", o->threads, "worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
   addQuietFlag(sub, o->quiet);
   return {sub, [o] {
-            const SurfaceOptions options = parseSurfaceOptions(o->scheme, o->masters);
+            const SurfaceOptions options = parseSurfaceOptions(o->scheme, o->masters, o->curves);
             const Scheme scheme = options.scheme;
             if (!o->controlNets.empty() && scheme != Scheme::BezierG1 && scheme != Scheme::CoonsC0)
               throw InputError("", "--control-nets", "needs --scheme bezier-g1 or coons-c0");
             const Network network = Network::build(loadNetworkInput(o->input), o->input);
             const Surface surface = Surface::build(network, options);
             warnAboutFolds(surface);
+            noteRepair(surface);
+            enforceShape(surface, measureShape(surface), o->strict);
             refuseIfTooLarge(estimateMeshBytes(estimateMeshVertices(surface, o->resolution), true),
                              "--resolution " + std::to_string(o->resolution));
             const Mesh mesh = tessellateShowingProgress(surface, {o->resolution, o->threads}, "tessellate",

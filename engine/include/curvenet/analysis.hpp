@@ -135,7 +135,14 @@ struct VertexAnalysis {
   /// from xAxis. Its branch tells which case of Sec. 2 applied; with fewer
   /// than three independent curves it is a choice ([SV14] eq. 8), not a
   /// measurement of the surface.
+  ///
+  /// Where the directions leave part of the tensor undetermined (a near-X:
+  /// directions in nearly opposite pairs; clustered directions) or the fit
+  /// would exceed max|κ_i^n| plus twice the curves' disagreement, those modes come
+  /// from the curves' mean curvature instead, so the tensor stays bounded by
+  /// what the curves show; regularizedModes says how many (0: the paper's fit).
   CurvatureFit fit;
+  int regularizedModes = 0;
   Vec3 principalDirection1; ///< unit 3D direction of k1 (xAxis rotated by lambda)
   VertexVerdict verdict = VertexVerdict::G2Admissible;
 
@@ -200,6 +207,9 @@ struct TweakOptions {
   /// Tweak every vertex whose relative Euler residual exceeds this (default:
   /// the analysis tolerance). 0 tweaks every vertex with any misfit.
   double eulerTolerance = -1; ///< < 0: use analysis.curvatureTolerance
+  /// Leave vertices with a degree-1 curve end as they are (listed in
+  /// TweakResult::skippedVertices) instead of throwing InputError.
+  bool skipDegreeOne = false;
 };
 
 /// One control-point move.
@@ -216,6 +226,7 @@ struct TweakResult {
   NetworkDescription network; ///< the repaired description (faces and parameters unchanged)
   std::vector<ControlPointMove> moves;
   std::vector<int> tweakedVertices;
+  std::vector<int> skippedVertices; ///< TweakOptions::skipDegreeOne: failing vertices left alone
   int insertedKnots = 0;
   double maxMove = 0;         ///< largest |distance| (length)
   double maxMoveRelative = 0; ///< maxMove / the network's diagonal
@@ -227,6 +238,65 @@ struct TweakResult {
 /// naming the curve when one to be tweaked has degree 1. Cost: one analysis
 /// plus O(degree²) per moved point and knot.
 TweakResult tweakNetwork(const Network &network, const TweakOptions &options = {});
+
+// ---------------------------------------------------------------------------
+// Vertex repair (paper 000 Sec. 2: "prior to generating our surface model, we
+// need to ensure that the defining network is G² … and in special cases
+// slightly adjust some curves")
+// ---------------------------------------------------------------------------
+//
+// Two steps, each only where a vertex fails, and never moving a vertex:
+//  1. Tangent plane (G¹): at a vertex whose tangents leave their
+//     least-squares plane by more than RepairOptions::tangentTolerance,
+//     every end tangent is turned into that plane by the smallest rotation
+//     about the vertex: the second control point from the end (the first
+//     beyond the vertex's own) is rotated about the vertex point, keeping the
+//     tangent's length. A curve passing through the vertex gets both
+//     neighbours of its vertex point turned by the same rotation (after knot
+//     insertion to multiplicity p), so it stays C¹ there.
+//  2. Curvature (G²): tweakNetwork on the result, at the vertices that fail
+//     the Euler constraint (degree-1 curves are skipped, not refused).
+// The moves are reported one per moved control point, with the length of
+// the move relative to the network's diagonal.
+
+enum class RepairKind { TangentPlane, Curvature };
+/// "tangent-plane", "curvature".
+const char *toString(RepairKind kind);
+
+struct RepairOptions {
+  AnalysisOptions analysis;
+  /// Step 1 turns the tangents at every vertex whose tangents leave their
+  /// plane by more than this (radians) — far below the analysis verdict's
+  /// tangentTolerance, because the normals of the patches meeting there
+  /// disagree by about as much: the analytic built-ins leave their planes by
+  /// ≤ 7.6e-9 rad (torus-mixed) and are left alone, a drawn network by
+  /// degrees.
+  double tangentTolerance = 5e-8;
+  bool tangentPlanes = true; ///< step 1
+  bool curvatures = true;    ///< step 2
+};
+
+struct RepairMove {
+  int vertex = -1;
+  int curve = -1; ///< index into NetworkDescription::curves
+  RepairKind kind = RepairKind::TangentPlane;
+  double size = 0;         ///< length of the control point's move
+  double sizeRelative = 0; ///< size / the network's diagonal
+  double angle = 0;        ///< TangentPlane: radians the tangent turned; Curvature: 0
+};
+
+struct RepairResult {
+  NetworkDescription network; ///< the repaired description (the input's when nothing moved)
+  std::vector<RepairMove> moves;
+  double maxMoveRelative = 0;
+  bool changed() const { return !moves.empty(); }
+};
+
+/// Repairs tangent planes and (when asked) curvatures at the vertices that
+/// fail them; vertices that pass, and curves not ending or passing at a
+/// repaired vertex, are untouched. Cost: one analysis per step plus the
+/// network builds between them.
+RepairResult repairNetwork(const Network &network, const RepairOptions &options = {});
 
 } // namespace v1
 } // namespace curvenet

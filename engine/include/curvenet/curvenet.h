@@ -105,16 +105,23 @@ typedef enum curvenet_master_faces {
   CURVENET_MASTER_FACES_KEPT_G1 = 1
 } curvenet_master_faces;
 
+/* The curves as given, or repaired at the vertices that fail (CurveHandling). */
+typedef enum curvenet_curves {
+  CURVENET_CURVES_REPAIRED = 0,
+  CURVENET_CURVES_KEPT = 1
+} curvenet_curves;
+
 typedef struct curvenet_surface_options {
   curvenet_scheme scheme;
   curvenet_sweepline sweepline;
   curvenet_fence_normals fence_normals;
   curvenet_edge_curvature edge_curvature; /* gregory-g2 only */
   curvenet_master_faces master_faces;     /* gregory-g2 only */
+  curvenet_curves curves;                 /* every scheme */
 } curvenet_surface_options;
 
 /* Fills the defaults: gregory-g1, automatic sweepline and fences, direct
- * edge curvature, master faces rebuilt. */
+ * edge curvature, master faces rebuilt, curves repaired. */
 void curvenet_surface_options_init(curvenet_surface_options *options);
 
 /* How a batch evaluation spreads its work (see BatchOptions in curvenet.hpp). */
@@ -282,6 +289,29 @@ curvenet_status_code curvenet_model_set_curve(curvenet_model *model, int curve, 
  * `curve`, keeping degree, knots and weights; rebuilds as above. */
 curvenet_status_code curvenet_model_set_control_points(curvenet_model *model, int curve, const double *points,
                                                        size_t point_count, curvenet_status *status);
+
+/* ---- Shape (curvenet/shape.hpp) ---------------------------------------- */
+
+/* The figures that catch a bad surface, over all faces. */
+typedef struct curvenet_shape {
+  size_t folded_faces;     /* faces whose patch folds */
+  size_t rejected_faces;   /* folded, or excursion above the bound */
+  double max_excursion;    /* relative to the diagonal */
+  int worst_excursion_face;
+  double excursion_bound;  /* kExcursionBound */
+  double fairness;         /* area-weighted mean over the faces */
+  double max_fairness;
+  int worst_fairness_face;
+  size_t repair_moves;     /* control points moved by the vertex repair */
+  double max_repair_move;  /* the largest, relative to the diagonal */
+} curvenet_shape;
+
+/* Fills *shape (Model::shape at the default resolution, Model::repairMoves). */
+curvenet_status_code curvenet_model_shape(const curvenet_model *model, curvenet_shape *shape,
+                                          curvenet_status *status);
+/* Face `face`'s figures; any output pointer may be NULL. */
+curvenet_status_code curvenet_model_face_shape(const curvenet_model *model, int face, int *folded,
+                                               double *excursion, double *fairness, curvenet_status *status);
 
 #ifdef __cplusplus
 } /* extern "C" */

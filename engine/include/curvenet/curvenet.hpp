@@ -56,6 +56,7 @@
 #include "curvenet/curve.hpp"
 #include "curvenet/mesh.hpp"
 #include "curvenet/network.hpp"
+#include "curvenet/shape.hpp"
 #include "curvenet/surface.hpp"
 #include "curvenet/tessellate.hpp"
 #include "curvenet/vec.hpp"
@@ -241,6 +242,15 @@ public:
   /// Note: Surface calls throw InputError on bad arguments. The pointer is
   /// valid until the next non-const call on the model.
   const Surface *surface(int face) const;
+
+  /// The shape figures of curvenet/shape.hpp (folded faces, excursion,
+  /// fairness, the faces --strict rejects), each face measured on the
+  /// surface of its group, the overall figures over all faces. Cost: one
+  /// measureShape per Surface (surfaceCount()).
+  Result<ShapeReport> shape(const ShapeOptions &options = {}) const;
+  /// Every control-point move the vertex repair made (SurfaceOptions::curves),
+  /// over all groups, in group order (each group repairs for its scheme).
+  std::vector<RepairMove> repairMoves() const;
 
   // ---- Options ----
 

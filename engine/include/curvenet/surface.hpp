@@ -64,6 +64,7 @@
 #include <span>
 #include <vector>
 
+#include "curvenet/analysis.hpp"
 #include "curvenet/network.hpp"
 #include "curvenet/vertex_math.hpp"
 
@@ -154,6 +155,24 @@ enum class MasterFaces {
   KeptG1,
 };
 
+/// Whether the surface is built on the curves as given or on the curves
+/// repaired at the vertices that fail (repairNetwork, curvenet/analysis.hpp;
+/// paper 000 Sec. 2).
+enum class CurveHandling {
+  /// The default. For every transfinite scheme the end tangents at a vertex
+  /// whose tangents leave their plane are turned into it (without a common
+  /// tangent plane no scheme can be G¹ there); for gregory-g2 the normal
+  /// curvatures at vertices failing the Euler constraint are also tweaked to
+  /// the fitted tensor (G² needs one curvature per vertex). Vertices never
+  /// move. Surface::network() is then the repaired network, and
+  /// Surface::repairMoves() lists every control-point move. bezier-g1 and
+  /// coons-c0 build on the curves as given (a repair may split their Bézier
+  /// spans).
+  Repaired,
+  /// The curves as given.
+  Kept,
+};
+
 /// "gregory-g1", "composite-ribbon", "gregory-g2", "bezier-g1", "coons-c0"; and back
 /// (std::nullopt for unknown names).
 std::string schemeName(Scheme scheme);
@@ -170,6 +189,11 @@ std::optional<EdgeCurvature> edgeCurvatureFromName(const std::string &name);
 /// "rebuilt", "kept-g1"; and back.
 std::string masterFacesName(MasterFaces masters);
 std::optional<MasterFaces> masterFacesFromName(const std::string &name);
+/// "repaired", "kept"; and back.
+std::string curveHandlingName(CurveHandling curves);
+std::optional<CurveHandling> curveHandlingFromName(const std::string &name);
+/// What CurveHandling::Repaired repairs for `scheme`.
+RepairOptions repairOptionsFor(Scheme scheme);
 
 struct SurfaceOptions {
   Scheme scheme = Scheme::GregoryG1;
@@ -177,6 +201,7 @@ struct SurfaceOptions {
   FenceNormals fenceNormals = FenceNormals::Auto;     ///< every scheme
   EdgeCurvature edgeCurvature = EdgeCurvature::Direct; ///< gregory-g2 only
   MasterFaces masterFaces = MasterFaces::Rebuilt;      ///< gregory-g2 only
+  CurveHandling curves = CurveHandling::Repaired;      ///< every scheme (see CurveHandling)
 };
 
 /// A surface point with its exact first derivatives in domain coordinates
@@ -242,7 +267,12 @@ public:
   /// unchanged.
   SurfaceEdit rebuildAfterEdit(const Network &edited) const;
 
+  /// The network the patches interpolate: the one given to build, or its
+  /// repair (SurfaceOptions::curves).
   const Network &network() const;
+  /// The control-point moves of the vertex repair (empty with
+  /// CurveHandling::Kept or when every vertex passed).
+  const std::vector<RepairMove> &repairMoves() const;
   /// The origin of the patches' internal frame in world coordinates: zero,
   /// except for a network whose bounding-box centre lies more than 4
   /// diagonals from the origin (e.g. a part placed at 1e6 in a large

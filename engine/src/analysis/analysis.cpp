@@ -9,6 +9,7 @@
 #include <numeric>
 #include <string>
 
+#include "analysis/vertex_curvature.hpp"
 #include "analysis/vertex_frames.hpp"
 #include "curvenet/error.hpp"
 
@@ -163,7 +164,11 @@ VertexAnalysis analyzeWithFrame(const Network &network, int v, const VertexFrame
     curveEnds[c] += 1;
   }
   for (int c = 0; c < curves; ++c) curveKappa[c] /= curveEnds[c];
-  out.fit = fitCurvature(curveOmega, curveKappa, fitOptions);
+  // Bounded: a near-X or other ill-conditioned fit must not hand the tweak a
+  // curvature far beyond what the curves show (vertex_curvature.hpp).
+  const BoundedCurvatureFit bounded = fitCurvatureBounded(curveOmega, curveKappa, fitOptions);
+  out.fit = bounded.fit;
+  out.regularizedModes = bounded.regularizedModes;
   out.principalDirection1 = std::cos(out.fit.tensor.lambda) * x + std::sin(out.fit.tensor.lambda) * y;
 
   if (out.tangentResidual > options.tangentTolerance) out.verdict = VertexVerdict::NoTangentPlane;

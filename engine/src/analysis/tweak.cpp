@@ -8,6 +8,7 @@
 #include <map>
 #include <string>
 
+#include "analysis/editable_curve.hpp"
 #include "curvenet/analysis.hpp"
 #include "curvenet/error.hpp"
 
@@ -24,79 +25,6 @@ struct EndTweak {
   bool right = true; ///< the end's segment lies at parameters > t0
   Vec3 normal;
   double target = 0;
-};
-
-/// A curve under edit, in homogeneous form (w·P, w), in which knot insertion
-/// is linear also for rational curves.
-struct EditableCurve {
-  int p = 0;
-  std::vector<double> U;
-  std::vector<Vec3> wp;
-  std::vector<double> w;
-  bool rational = false;
-
-  explicit EditableCurve(const BSplineCurve &c) : p(c.degree()), U(c.knots()), rational(c.isRational()) {
-    for (size_t i = 0; i < c.controlPoints().size(); ++i) {
-      const double wi = rational ? c.weights()[i] : 1.0;
-      wp.push_back(wi * c.controlPoints()[i]);
-      w.push_back(wi);
-    }
-  }
-
-  int count() const { return int(w.size()); }
-
-  BSplineCurve curve() const {
-    std::vector<Vec3> P(wp.size());
-    for (size_t i = 0; i < wp.size(); ++i) P[i] = wp[i] / w[i];
-    return BSplineCurve(p, U, std::move(P), rational ? w : std::vector<double>{});
-  }
-
-  /// Boehm insertion of knot u (domainStart < u < domainEnd) once
-  /// (The NURBS Book, Algorithm A5.1 with r = 1): the curve is unchanged.
-  void insertKnot(double u) {
-    const int n = count();
-    const int k = int(std::upper_bound(U.begin(), U.end(), u) - U.begin()) - 1; // U[k] <= u < U[k+1]
-    std::vector<Vec3> qp(n + 1);
-    std::vector<double> qw(n + 1);
-    for (int i = 0; i <= k - p; ++i) qp[i] = wp[i], qw[i] = w[i];
-    for (int i = k; i < n; ++i) qp[i + 1] = wp[i], qw[i + 1] = w[i];
-    for (int i = k - p + 1; i <= k; ++i) {
-      const double alpha = (u - U[i]) / (U[i + p] - U[i]);
-      qp[i] = alpha * wp[i] + (1 - alpha) * wp[i - 1];
-      qw[i] = alpha * w[i] + (1 - alpha) * w[i - 1];
-    }
-    U.insert(U.begin() + k + 1, u);
-    wp = std::move(qp);
-    w = std::move(qw);
-  }
-
-  int multiplicity(double u) const { return int(std::count(U.begin(), U.end(), u)); }
-
-  /// The control point whose move changes c''(t0) on the given side and
-  /// nothing of lower order: Q_{k+2} right of t0, Q_{k−2} left of it, where
-  /// Q_k is the control point at t0 (t0 has multiplicity ≥ p).
-  int movedPoint(double t0, bool right) const {
-    if (right) {
-      const int span = int(std::upper_bound(U.begin(), U.end(), t0) - U.begin()) - 1; // last copy of t0
-      return span - p + 2;
-    }
-    const int first = int(std::lower_bound(U.begin(), U.end(), t0) - U.begin()); // first copy of t0
-    return first - 1 - 2;
-  }
-
-  /// Whether the basis function of control point j vanishes with its first
-  /// and second derivatives at parameter `other` (another vertex on the
-  /// curve): true when `other` is outside its support [U[j], U[j+p+1]], or at
-  /// a support end that is a knot of multiplicity ≤ p − 2 among its knots
-  /// (the basis function is C^{p−m} there).
-  bool leavesAlone(int j, double other) const {
-    const double lo = U[j], hi = U[j + p + 1];
-    if (other < lo || other > hi) return true;
-    if (other != lo && other != hi) return false;
-    int m = 0;
-    for (int i = j; i <= j + p + 1; ++i) m += U[i] == other;
-    return m <= p - 2;
-  }
 };
 
 /// Normal curvature c''·n / |c'|² at t0 from one side, and c' there.
@@ -123,6 +51,12 @@ TweakResult tweakNetwork(const Network &network, const TweakOptions &options) {
   std::map<int, std::vector<EndTweak>> byCurve;
   for (const VertexAnalysis &va : analysis.vertices) {
     if (!(va.eulerResidualRelative > tolerance)) continue;
+    if (options.skipDegreeOne && std::any_of(va.ends.begin(), va.ends.end(), [&](const CurveEnd &end) {
+          return result.network.curves[end.sourceCurve].degree() < 2;
+        })) {
+      result.skippedVertices.push_back(va.vertex);
+      continue;
+    }
     result.tweakedVertices.push_back(va.vertex);
     for (const CurveEnd &end : va.ends)
       byCurve[end.sourceCurve].push_back(

@@ -1,5 +1,7 @@
 #include "analysis/vertex_curvature.hpp"
 
+#include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
 
 namespace curvenet {
@@ -15,7 +17,95 @@ Vec3 planeAxis(const Vec3 &normal, const Vec3 &hint) {
   }
   return normalized(x);
 }
+
+// Euler's formula in the harmonic basis: κ(ω) = a + p cos 2ω + q sin 2ω, with
+// a the mean and (p, q) the anisotropy. Unlike (W1, W2, W12) these columns
+// are orthogonal for evenly spread directions, so their singular values say
+// directly which part of the tensor the directions fail to see.
+Eigen::RowVector3d harmonicRow(double omega) { return {1.0, std::cos(2 * omega), std::sin(2 * omega)}; }
+
+CurvatureTensor tensorFromHarmonics(const Eigen::Vector3d &x) {
+  // W1 = κ(0) = a + p, W2 = κ(π/2) = a − p, W12 = q.
+  return CurvatureTensor::fromWeingarten({x(0) + x(1), x(0) - x(1), x(2)});
+}
+
+/// |sin| of the angle between the lines of two direction classes: the
+/// largest |sin(ω_i − ω_j)| over the pairs (directions within the parallel
+/// tolerance are one class, so this is the angle between the two).
+double twoCurveSeparation(std::span<const double> omegas, const FitOptions &options) {
+  double widest = 0;
+  for (std::size_t i = 0; i < omegas.size(); ++i)
+    for (std::size_t j = i + 1; j < omegas.size(); ++j) widest = std::max(widest, std::abs(std::sin(omegas[i] - omegas[j])));
+  return widest > options.parallelTolerance ? widest : 0.0;
+}
+
+bool withinBound(const CurvatureTensor &t, double bound) {
+  return std::max(std::abs(t.k1), std::abs(t.k2)) <= bound;
+}
+
+void fillResiduals(CurvatureFit &fit, std::span<const double> omegas, std::span<const double> ks) {
+  double sum = 0, worst = 0;
+  for (std::size_t i = 0; i < omegas.size(); ++i) {
+    const double r = fit.tensor.normalCurvature(omegas[i]) - ks[i];
+    sum += r * r;
+    worst = std::max(worst, std::abs(r));
+  }
+  fit.rmsResidual = std::sqrt(sum / double(omegas.size()));
+  fit.maxResidual = worst;
+}
+
 } // namespace
+
+double principalCurvatureBound(std::span<const double> ks) {
+  if (ks.empty()) return 0;
+  const auto [lo, hi] = std::minmax_element(ks.begin(), ks.end());
+  return std::max(std::abs(*lo), std::abs(*hi)) + 2 * (*hi - *lo);
+}
+
+BoundedCurvatureFit fitCurvatureBounded(std::span<const double> omegas, std::span<const double> ks,
+                                        const FitOptions &options) {
+  BoundedCurvatureFit out{fitCurvature(omegas, ks, options), 0};
+  const double bound = principalCurvatureBound(ks);
+  const auto m = Eigen::Index(omegas.size());
+  Eigen::MatrixX3d A(m, 3);
+  Eigen::VectorXd b(m);
+  for (Eigen::Index i = 0; i < m; ++i) A.row(i) = harmonicRow(omegas[i]), b(i) = ks[i];
+  const Eigen::JacobiSVD<Eigen::MatrixX3d> svd(A, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::Vector3d sigma = svd.singularValues(); // descending
+  // Modes the directions determine: a rank-deficient design (n ≤ 2) has
+  // fewer, and the paper's n = 2 rules choose the rest; they stand while
+  // within the bound.
+  int determined = 0;
+  for (int i = 0; i < 3; ++i)
+    if (sigma(i) > kUndeterminedModeRatio * sigma(0)) ++determined;
+  // Three or more curves: kept when every mode is determined and the tensor
+  // within the bound. Two: the paper's rules (Sec. 2 (i), App. A) choose the
+  // mode the data leave free, and stand unless the curves are nearly
+  // parallel (where they divide by a small sin²) and exceed the bound.
+  const int n = out.fit.independentDirections;
+  const bool inBound = withinBound(out.fit.tensor, bound);
+  const bool keep = n >= 3   ? determined == 3 && inBound
+                    : n == 2 ? inBound || twoCurveSeparation(omegas, options) >= kNearlyParallelSine
+                             : true;
+  if (keep) return out;
+
+  // Truncated SVD about the umbilic prior x0 = (mean k, 0, 0): the modes kept
+  // fit the data in the least-squares sense, the others keep x0's value.
+  const Eigen::Vector3d prior(b.mean(), 0, 0);
+  const Eigen::VectorXd misfit = b - A * prior;
+  const Eigen::Vector3d projected = svd.matrixU().transpose() * misfit;
+  for (int kept = std::min(determined, out.fit.independentDirections); kept >= 0; --kept) {
+    Eigen::Vector3d x = prior;
+    for (int i = 0; i < kept; ++i) x += svd.matrixV().col(i) * (projected(i) / sigma(i));
+    const CurvatureTensor t = tensorFromHarmonics(x);
+    if (kept > 0 && !withinBound(t, bound)) continue;
+    out.fit.tensor = t;
+    out.regularizedModes = 3 - kept;
+    break;
+  }
+  fillResiduals(out.fit, omegas, ks);
+  return out;
+}
 
 Vec3 VertexCurvature::direction1() const {
   return xAxis * std::cos(tensor.lambda) + yAxis * std::sin(tensor.lambda);
@@ -65,7 +155,9 @@ VertexCurvature fitVertexCurvature(const Network &network, const std::vector<Ver
   // builder's continuation angle (1e-4) decides instead.
   FitOptions fitOptions;
   fitOptions.parallelTolerance = 1e-4;
-  const CurvatureFit fit = fitCurvature(omegas, ks, fitOptions);
+  const BoundedCurvatureFit bounded = fitCurvatureBounded(omegas, ks, fitOptions);
+  const CurvatureFit &fit = bounded.fit;
+  vc.regularizedModes = bounded.regularizedModes;
   vc.tensor = fit.tensor;
   vc.branch = fit.branch;
   vc.independentDirections = fit.independentDirections;

@@ -20,6 +20,8 @@ struct curvenet_model {
 
 static_assert(static_cast<int>(StatusCode::OutOfMemory) == CURVENET_OUT_OF_MEMORY &&
               static_cast<int>(StatusCode::NoMesh) == CURVENET_NO_MESH);
+static_assert(static_cast<int>(CurveHandling::Repaired) == CURVENET_CURVES_REPAIRED &&
+              static_cast<int>(CurveHandling::Kept) == CURVENET_CURVES_KEPT);
 static_assert(static_cast<int>(Scheme::CoonsC0) == CURVENET_COONS_C0 &&
               static_cast<int>(Sweepline::QuinticHermite) == CURVENET_SWEEPLINE_QUINTIC_HERMITE &&
               static_cast<int>(FenceNormals::Reference) == CURVENET_FENCE_REFERENCE &&
@@ -70,7 +72,7 @@ SurfaceOptions toOptions(const curvenet_surface_options *options) {
   if (!options) return {};
   return {static_cast<Scheme>(options->scheme), static_cast<Sweepline>(options->sweepline),
           static_cast<FenceNormals>(options->fence_normals), static_cast<EdgeCurvature>(options->edge_curvature),
-          static_cast<MasterFaces>(options->master_faces)};
+          static_cast<MasterFaces>(options->master_faces), static_cast<CurveHandling>(options->curves)};
 }
 
 /// Enum values outside their range would reach the engine as invalid enums.
@@ -88,12 +90,13 @@ bool validOptions(const curvenet_surface_options *o) {
   if (!o) return true;
   const int scheme = rawValue(o->scheme), sweepline = rawValue(o->sweepline);
   const int fence = rawValue(o->fence_normals), curvature = rawValue(o->edge_curvature);
-  const int masters = rawValue(o->master_faces);
+  const int masters = rawValue(o->master_faces), curves = rawValue(o->curves);
   return scheme >= CURVENET_GREGORY_G1 && scheme <= CURVENET_COONS_C0 && sweepline >= CURVENET_SWEEPLINE_AUTO &&
          sweepline <= CURVENET_SWEEPLINE_QUINTIC_HERMITE && fence >= CURVENET_FENCE_AUTO &&
          fence <= CURVENET_FENCE_REFERENCE && curvature >= CURVENET_EDGE_CURVATURE_MASTER_SLAVE &&
          curvature <= CURVENET_EDGE_CURVATURE_REFERENCE && masters >= CURVENET_MASTER_FACES_REBUILT &&
-         masters <= CURVENET_MASTER_FACES_KEPT_G1;
+         masters <= CURVENET_MASTER_FACES_KEPT_G1 && curves >= CURVENET_CURVES_REPAIRED &&
+         curves <= CURVENET_CURVES_KEPT;
 }
 
 std::vector<Vec3> toPoints(const double *xyz, std::size_t count) {
@@ -211,7 +214,8 @@ void curvenet_surface_options_init(curvenet_surface_options *options) {
   const SurfaceOptions d;
   *options = {static_cast<curvenet_scheme>(d.scheme), static_cast<curvenet_sweepline>(d.sweepline),
               static_cast<curvenet_fence_normals>(d.fenceNormals),
-              static_cast<curvenet_edge_curvature>(d.edgeCurvature), static_cast<curvenet_master_faces>(d.masterFaces)};
+              static_cast<curvenet_edge_curvature>(d.edgeCurvature), static_cast<curvenet_master_faces>(d.masterFaces),
+              static_cast<curvenet_curves>(d.curves)};
 }
 
 void curvenet_batch_options_init(curvenet_batch_options *options) {
@@ -319,6 +323,37 @@ curvenet_status_code curvenet_model_evaluate_positions(const curvenet_model *mod
                                                        size_t count, double *xyz, const curvenet_batch_options *batch,
                                                        curvenet_status *status) {
   return guarded(status, [&] { return evaluateChunks<Vec3>(model, face, uv, count, xyz, batch, status); });
+}
+
+curvenet_status_code curvenet_model_shape(const curvenet_model *model, curvenet_shape *shape,
+                                          curvenet_status *status) {
+  if (!model || !shape) return nullArgument(!model ? "model" : "shape", status);
+  return guarded(status, [&] {
+    const Result<ShapeReport> r = model->model.shape();
+    if (!r) return report(r.status(), status);
+    const std::vector<RepairMove> moves = model->model.repairMoves();
+    double largest = 0;
+    for (const RepairMove &m : moves) largest = std::max(largest, m.sizeRelative);
+    *shape = {r->foldedFaces.size(), r->rejectedFaces.size(), r->maxExcursion, r->worstExcursionFace, kExcursionBound,
+              r->fairness, r->maxFairness, r->worstFairnessFace, moves.size(), largest};
+    return report({}, status);
+  });
+}
+
+curvenet_status_code curvenet_model_face_shape(const curvenet_model *model, int face, int *folded,
+                                               double *excursion, double *fairness, curvenet_status *status) {
+  if (!model) return nullArgument("model", status);
+  if (face < 0 || face >= model->model.faceCount())
+    return report(Status{StatusCode::InvalidArgument, {}, "face " + std::to_string(face), "no such face"}, status);
+  return guarded(status, [&] {
+    const Result<ShapeReport> r = model->model.shape();
+    if (!r) return report(r.status(), status);
+    const FaceShape &f = r->faces[static_cast<std::size_t>(face)];
+    if (folded) *folded = f.folded ? 1 : 0;
+    if (excursion) *excursion = f.excursion;
+    if (fairness) *fairness = f.fairness;
+    return report({}, status);
+  });
 }
 
 curvenet_status_code curvenet_model_tessellate(curvenet_model *model, int face, int resolution, int threads,

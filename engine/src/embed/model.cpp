@@ -389,6 +389,47 @@ const Surface *Model::surface(int face) const {
   return impl_->validFace(face) ? &impl_->surfaceOf(face) : nullptr;
 }
 
+Result<ShapeReport> Model::shape(const ShapeOptions &options) const {
+  return guarded<Result<ShapeReport>>([&]() -> Result<ShapeReport> {
+    ShapeReport merged;
+    merged.faces.resize(static_cast<std::size_t>(faceCount()));
+    std::vector<const Surface *> measured;
+    for (int f = 0; f < faceCount(); ++f) {
+      const Surface *owner = surface(f);
+      if (std::find(measured.begin(), measured.end(), owner) != measured.end()) continue;
+      measured.push_back(owner);
+      const ShapeReport part = measureShape(*owner, options);
+      for (int g = 0; g < faceCount(); ++g)
+        if (surface(g) == owner) merged.faces[static_cast<std::size_t>(g)] = part.faces[static_cast<std::size_t>(g)];
+    }
+    double weighted = 0, area = 0;
+    for (const FaceShape &face : merged.faces) {
+      if (face.folded) merged.foldedFaces.push_back(face.face);
+      if (face.folded || !(face.excursion <= kExcursionBound)) merged.rejectedFaces.push_back(face.face);
+      if (merged.worstExcursionFace < 0 || face.excursion > merged.maxExcursion)
+        merged.maxExcursion = face.excursion, merged.worstExcursionFace = face.face;
+      if (merged.worstFairnessFace < 0 || face.fairness > merged.maxFairness)
+        merged.maxFairness = face.fairness, merged.worstFairnessFace = face.face;
+      weighted += face.fairness * face.area;
+      area += face.area;
+    }
+    merged.fairness = area > 0 ? weighted / area : 0.0;
+    return merged;
+  });
+}
+
+std::vector<RepairMove> Model::repairMoves() const {
+  std::vector<RepairMove> moves;
+  std::vector<const Surface *> seen;
+  for (int f = 0; f < faceCount(); ++f) {
+    const Surface *owner = surface(f);
+    if (std::find(seen.begin(), seen.end(), owner) != seen.end()) continue;
+    seen.push_back(owner);
+    moves.insert(moves.end(), owner->repairMoves().begin(), owner->repairMoves().end());
+  }
+  return moves;
+}
+
 Status Model::setFaceOptions(int face, const SurfaceOptions &options) {
   if (face != allFaces && !impl_->validFace(face))
     return failure(StatusCode::InvalidArgument, faceName(face), "no such face");

@@ -209,6 +209,7 @@ struct Surface::Impl {
   std::vector<std::vector<DomainSide>> domainSides;
   /// bezier-g1 / coons-c0: the quintic patches (the transfinite members stay empty).
   std::shared_ptr<const bezier::BezierSurfaceData> bezier;
+  std::vector<RepairMove> repairMoves; ///< SurfaceOptions::curves: the vertex repair made
 };
 
 const bezier::BezierSurfaceData *SurfaceAccess::bezierData(const Surface &surface) {
@@ -618,6 +619,18 @@ std::vector<int> facesOf(const Network &network, std::span<const int> segments) 
 } // namespace
 
 Surface Surface::build(const Network &network, const SurfaceOptions &options) {
+  // Vertex repair (curvenet/analysis.hpp) is the stage before all others:
+  // the surface is built on, and reports, the repaired network.
+  if (options.curves == CurveHandling::Repaired)
+    if (RepairResult repair = repairNetwork(network, repairOptionsFor(options.scheme)); repair.changed()) {
+      SurfaceOptions kept = options;
+      kept.curves = CurveHandling::Kept;
+      Surface surface = build(Network::build(repair.network, network.name()), kept);
+      const auto impl = std::const_pointer_cast<Impl>(surface.impl_); // not shared yet
+      impl->options.curves = CurveHandling::Repaired;
+      impl->repairMoves = std::move(repair.moves);
+      return surface;
+    }
   // A model far from the origin is built translated to its bounding-box
   // centre, and points are translated back on the way out.
   if (needsOriginShift(network)) {
@@ -682,6 +695,15 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
 
 SurfaceEdit Surface::rebuildAfterEdit(const Network &edited) const {
   const Impl &old = *impl_;
+  // The vertex repair first, as in build: the repaired edit differs from this
+  // surface's (repaired) network near the edit only, so the rebuild below
+  // stays partial; repairing it again changes nothing.
+  if (old.options.curves == CurveHandling::Repaired)
+    if (RepairResult repair = repairNetwork(edited, repairOptionsFor(old.options.scheme)); repair.changed()) {
+      SurfaceEdit result = rebuildAfterEdit(Network::build(repair.network, edited.name()));
+      std::const_pointer_cast<Impl>(result.surface.impl_)->repairMoves = std::move(repair.moves); // not shared yet
+      return result;
+    }
   // Kept G¹ master faces: a full build (their fences and patches come from
   // the G¹ surface, which an edit rebuilds in part by itself).
   const bool partial = !old.bezier && old.keptG1.empty() && old.origin == Vec3{} && !needsOriginShift(edited) &&
@@ -700,6 +722,7 @@ SurfaceEdit Surface::rebuildAfterEdit(const Network &edited) const {
   changed = sortedUnique(std::move(changed));
 
   auto impl = std::make_shared<Impl>(old);
+  impl->repairMoves.clear(); // the caller (above) sets the moves of this edit's repair
   impl->network = edited;
   // The frames and curvatures of the changed segments' end vertices (every
   // curve at a vertex enters its tangent plane and curvature fit); then the
@@ -741,6 +764,7 @@ SurfaceEdit Surface::rebuildAfterEdit(const Network &edited) const {
 }
 
 const Network &Surface::network() const { return impl_->network; }
+const std::vector<RepairMove> &Surface::repairMoves() const { return impl_->repairMoves; }
 Vec3 Surface::origin() const { return impl_->origin; }
 const std::vector<int> &Surface::foldedFaces() const { return impl_->folded; }
 const SurfaceOptions &Surface::options() const { return impl_->options; }

@@ -1,0 +1,112 @@
+// Shape figures of a built surface (curvenet/shape.hpp).
+#include "curvenet/shape.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "curvenet/error.hpp"
+
+namespace curvenet {
+inline namespace v1 {
+
+namespace {
+
+/// κ1² + κ2² = (κ1 + κ2)² − 2 κ1κ2 from the two fundamental forms, and the
+/// area element |du × dv|.
+struct PointCurvature {
+  double squaredPrincipal = 0;
+  double areaElement = 0;
+};
+
+PointCurvature pointCurvature(const SurfacePoint2 &p) {
+  const double E = dot(p.du, p.du), F = dot(p.du, p.dv), G = dot(p.dv, p.dv);
+  const double L = dot(p.duu, p.normal), M = dot(p.duv, p.normal), N = dot(p.dvv, p.normal);
+  const double det = E * G - F * F;
+  if (!(det > 0)) return {};
+  const double mean2 = (E * N - 2 * F * M + G * L) / det; // κ1 + κ2
+  const double gauss = (L * N - M * M) / det;             // κ1 κ2
+  return {mean2 * mean2 - 2 * gauss, std::sqrt(det)};
+}
+
+/// Mean κ² along a curve on [0, 1] by arc length, and its length.
+void addCurveCurvature(const BSplineCurve &curve, int samples, double &integral, double &length) {
+  for (int j = 0; j < samples; ++j) {
+    const double t = curve.domainStart() + (curve.domainEnd() - curve.domainStart()) * (j + 0.5) / samples;
+    const auto d = curve.derivatives(t);
+    const double speed = norm(d[1]);
+    if (!(speed > 0)) continue;
+    const double kappa = norm(cross(d[1], d[2])) / (speed * speed * speed);
+    const double ds = speed * (curve.domainEnd() - curve.domainStart()) / samples;
+    integral += kappa * kappa * ds;
+    length += ds;
+  }
+}
+
+FaceShape measureFace(const Surface &surface, int f, int resolution) {
+  const Network &network = surface.network();
+  const Face &face = network.faces()[size_t(f)];
+  FaceShape out;
+  out.face = f;
+  BoundingBox boundary;
+  double boundaryIntegral = 0, boundaryLength = 0;
+  const int curveSamples = 8 * resolution;
+  for (const FaceSide &side : face.sides) {
+    for (int j = 0; j <= curveSamples; ++j) boundary.add(side.curve.point(double(j) / curveSamples));
+    addCurveCurvature(side.curve, curveSamples, boundaryIntegral, boundaryLength);
+  }
+  BoundingBox withPatch = boundary;
+  const int n = surface.domainSides(f);
+  Vec2 centre{0, 0};
+  for (int k = 0; k < n; ++k) centre += surface.domainCorner(f, k) * (1.0 / n);
+  double integral = 0, area = 0;
+  const double r = resolution;
+  for (int k = 0; k < n; ++k) {
+    const Vec2 a = surface.domainCorner(f, k) - centre, b = surface.domainCorner(f, (k + 1) % n) - centre;
+    const double triangleArea = 0.5 * std::abs(a.x * b.y - a.y * b.x) / (r * r);
+    // Centroids of the resolution² sub-triangles of (centre, corner k, corner k+1).
+    for (int i = 0; i < resolution; ++i)
+      for (int j = 0; i + j < resolution; ++j)
+        for (int flip = 0; flip < (i + j + 1 < resolution ? 2 : 1); ++flip) {
+          const double s = flip ? (i + 2.0 / 3) / r : (i + 1.0 / 3) / r;
+          const double t = flip ? (j + 2.0 / 3) / r : (j + 1.0 / 3) / r;
+          const Vec2 uv = centre + a * s + b * t;
+          const SurfacePoint2 p = surface.evaluateSecondOrder(f, uv);
+          withPatch.add(p.point);
+          const PointCurvature c = pointCurvature(p);
+          integral += c.squaredPrincipal * c.areaElement * triangleArea;
+          area += c.areaElement * triangleArea;
+        }
+  }
+  out.area = area;
+  out.excursion = (withPatch.diagonal() - boundary.diagonal()) / network.diagonal();
+  const double floor = 1.0 / (network.diagonal() * network.diagonal());
+  const double boundaryMean = boundaryLength > 0 ? boundaryIntegral / boundaryLength : 0.0;
+  out.fairness = area > 0 ? (integral / area) / std::max(boundaryMean, floor) : 0.0;
+  return out;
+}
+
+} // namespace
+
+ShapeReport measureShape(const Surface &surface, const ShapeOptions &options) {
+  if (options.resolution < 1) throw InputError("", "shape resolution", "must be at least 1");
+  ShapeReport report;
+  report.foldedFaces = surface.foldedFaces();
+  double weighted = 0, totalArea = 0;
+  for (int f = 0; f < surface.faceCount(); ++f) {
+    FaceShape face = measureFace(surface, f, options.resolution);
+    face.folded = std::find(report.foldedFaces.begin(), report.foldedFaces.end(), f) != report.foldedFaces.end();
+    if (face.excursion > report.maxExcursion || report.worstExcursionFace < 0)
+      report.maxExcursion = face.excursion, report.worstExcursionFace = f;
+    if (face.fairness > report.maxFairness || report.worstFairnessFace < 0)
+      report.maxFairness = face.fairness, report.worstFairnessFace = f;
+    weighted += face.fairness * face.area;
+    totalArea += face.area;
+    if (face.folded || !(face.excursion <= kExcursionBound)) report.rejectedFaces.push_back(f);
+    report.faces.push_back(face);
+  }
+  report.fairness = totalArea > 0 ? weighted / totalArea : 0.0;
+  return report;
+}
+
+} // namespace v1
+} // namespace curvenet

@@ -1,0 +1,345 @@
+// The robustness corpus: built-in networks broken the way drawn networks
+// are, and the real files of ../shared/data, each through gregory-g1,
+// composite-ribbon and gregory-g2, with the vertex repair on (the default)
+// and off.
+//
+//  (a) every curve's end tangents turned by 0.5°, 1° and 3° in seeded random
+//      directions (the second control point from each end rotated about the
+//      end point; drawn sketches leave their tangent planes by 2.6–7.5°);
+//  (b) a smooth space warp of 1 % and 5 % of the diagonal applied to every
+//      control point (connectivity kept; tangent planes and curvature
+//      compatibility broken slightly at the nodes);
+//  (c) X-nodes skewed by 1° and 5° (one curve end of each four-valent node
+//      turned about the vertex normal), so that they are only nearly X;
+//  (d) the .lop files of ../shared/data/transfinite-models.
+//
+// Properties: folded faces, the tessellation's bounding-box diagonal over
+// the network's, the curvature jump across edges whose vertices are both
+// G²-admissible (gregory-g2), the largest normal angle. The expectations are
+// a table, one row per case and scheme: tightening a bound is a one-line
+// change. CURVENET_CORPUS_TABLE=1 prints every figure measured.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <random>
+
+#include "analysis/editable_curve.hpp"
+#include "curvenet/analysis.hpp"
+#include "curvenet/builtins.hpp"
+#include "curvenet/continuity.hpp"
+#include "curvenet/curvature_jump.hpp"
+#include "curvenet/io.hpp"
+#include "curvenet/shape.hpp"
+#include "curvenet/surface.hpp"
+#include "curvenet/tessellate.hpp"
+
+using namespace curvenet;
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+// ---- perturbations -------------------------------------------------------------
+
+BSplineCurve withPoints(const BSplineCurve &c, std::vector<Vec3> points) {
+  return BSplineCurve(c.degree(), c.knots(), std::move(points), c.weights());
+}
+
+/// v rotated by `angle` about unit `axis` (Rodrigues).
+Vec3 rotated(const Vec3 &v, const Vec3 &axis, double angle) {
+  return v * std::cos(angle) + cross(axis, v) * std::sin(angle) + axis * (dot(axis, v) * (1 - std::cos(angle)));
+}
+
+/// A unit vector perpendicular to `d`, in a seeded random direction.
+Vec3 randomPerpendicular(const Vec3 &d, std::mt19937 &rng) {
+  std::normal_distribution<double> gauss;
+  for (;;) {
+    const Vec3 r{gauss(rng), gauss(rng), gauss(rng)};
+    const Vec3 p = r - d * (dot(r, d) / squaredNorm(d));
+    if (squaredNorm(p) > 1e-6) return normalized(p);
+  }
+}
+
+/// (a): both end tangents of every curve turned by `degrees`.
+NetworkDescription turnEndTangents(NetworkDescription d, double degrees, unsigned seed) {
+  std::mt19937 rng(seed);
+  for (BSplineCurve &c : d.curves) {
+    std::vector<Vec3> p = c.controlPoints();
+    if (p.size() < 4) continue; // the second point would also be the other end's
+    for (int end = 0; end < 2; ++end) {
+      const size_t at = end == 0 ? 0 : p.size() - 1, next = end == 0 ? 1 : p.size() - 2;
+      const Vec3 arm = p[next] - p[at];
+      p[next] = p[at] + rotated(arm, randomPerpendicular(arm, rng), degrees * pi / 180);
+    }
+    c = withPoints(c, std::move(p));
+  }
+  return d;
+}
+
+/// (b): x ↦ x + a·D·(sin(ωy + φ1), sin(ωz + φ2), sin(ωx + φ3)), D the
+/// diagonal, a = `fraction`, one period over the model.
+NetworkDescription warp(NetworkDescription d, double fraction) {
+  const Network n = Network::build(d);
+  const double D = n.diagonal(), w = 2 * pi / D;
+  for (BSplineCurve &c : d.curves) {
+    std::vector<Vec3> p = c.controlPoints();
+    for (Vec3 &x : p)
+      x = x + Vec3{std::sin(w * x.y + 0.3), std::sin(w * x.z + 1.1), std::sin(w * x.x + 2.3)} * (fraction * D);
+    c = withPoints(c, std::move(p));
+  }
+  d.reference.reset(); // no longer the analytic surface
+  return d;
+}
+
+/// (c): at every X-node (four-valent, opposite tangents collinear), one
+/// end turned by `degrees` about the vertex normal: the second control
+/// point from a curve end, or — for a curve passing through, after knot
+/// insertion to multiplicity p — the neighbour of the vertex's point on one
+/// side, which leaves the curve a corner there. `skewed` counts the nodes.
+NetworkDescription skewXNodes(NetworkDescription d, double degrees, int &skewed) {
+  const Network n = Network::build(d);
+  const NetworkAnalysis analysis = analyzeNetwork(n);
+  std::vector<char> turned(d.curves.size(), 0);
+  skewed = 0;
+  for (const VertexAnalysis &va : analysis.vertices) {
+    if (va.valence != 4 || !va.formsX) continue;
+    for (const CurveEnd &end : va.ends) {
+      if (turned[end.sourceCurve]) continue;
+      EditableCurve edit(d.curves[end.sourceCurve]);
+      double t0 = end.sourceParameter;
+      for (double u : edit.U)
+        if (std::abs(u - t0) <= 1e-13) t0 = u;
+      const double a = edit.U[edit.p], b = edit.U[edit.U.size() - edit.p - 1];
+      int k = 0;
+      if (t0 <= a) k = 0;
+      else if (t0 >= b) k = edit.count() - 1;
+      else {
+        for (int r = edit.multiplicity(t0); r < edit.p; ++r) edit.insertKnot(t0);
+        k = int(std::lower_bound(edit.U.begin(), edit.U.end(), t0) - edit.U.begin()) - 1;
+      }
+      const int j = end.towardsLargerParameter ? k + 1 : k - 1;
+      if (j < 0 || j >= edit.count()) continue;
+      const Vec3 centre = edit.wp[k] / edit.w[k], arm = edit.wp[j] / edit.w[j] - centre;
+      edit.wp[j] = edit.w[j] * (centre + rotated(arm, va.normal, degrees * pi / 180));
+      d.curves[end.sourceCurve] = edit.curve();
+      turned[end.sourceCurve] = 1;
+      ++skewed;
+      break;
+    }
+  }
+  d.reference.reset();
+  return d;
+}
+
+// ---- measurement ---------------------------------------------------------------
+
+struct Figures {
+  int folds = 0;
+  double diagonalRatio = 0;
+  double maxJump = 0;     ///< gregory-g2: across edges whose two vertices are G²-admissible
+  double maxAngleDeg = 0; ///< normal angle across shared segments
+  double excursion = 0;
+  size_t repairMoves = 0;
+};
+
+Figures measure(const Network &network, Scheme scheme, CurveHandling curves) {
+  SurfaceOptions options;
+  options.scheme = scheme;
+  options.curves = curves;
+  const Surface surface = Surface::build(network, options);
+  Figures f;
+  f.folds = int(surface.foldedFaces().size());
+  f.repairMoves = surface.repairMoves().size();
+  const Mesh mesh = tessellate(surface, {4, 0});
+  BoundingBox box;
+  for (const Vec3 &p : mesh.positions) box.add(p);
+  f.diagonalRatio = box.diagonal() / network.diagonal();
+  f.maxAngleDeg = measureContinuity(surface, {8}).maxNormalAngleDeg;
+  f.excursion = measureShape(surface, {2}).maxExcursion;
+  if (scheme == Scheme::GregoryG2) {
+    const Network &built = surface.network();
+    const NetworkAnalysis analysis = analyzeNetwork(built);
+    CurvatureJumpOptions jumpOptions;
+    jumpOptions.samplesPerSegment = 5;
+    for (const CurvatureJumpSample &s : measureCurvatureJump(surface, jumpOptions).samples) {
+      const Segment &seg = built.segments()[size_t(s.segment)];
+      if (analysis.vertices[size_t(seg.start)].verdict == VertexVerdict::G2Admissible &&
+          analysis.vertices[size_t(seg.end)].verdict == VertexVerdict::G2Admissible)
+        f.maxJump = std::max(f.maxJump, s.jump);
+    }
+  }
+  return f;
+}
+
+// ---- the corpus and its expectations ---------------------------------------------
+
+struct Expectation {
+  int maxFolds;
+  double maxDiagonalRatio;
+  double maxJump; ///< gregory-g2 only
+  double maxAngleDeg;
+};
+
+const char *const kBase = "sphere-dodecahedron";
+const char *const kXBase = "saddle-nodes";
+
+struct Case {
+  std::string name;
+  std::function<NetworkDescription()> make;
+  // Repaired (the default), per scheme: gregory-g1, composite-ribbon, gregory-g2.
+  Expectation g1, cr, g2;
+};
+
+
+
+// The expectations: what holds on this code, measured with the repair on.
+// The goal for every row is {0, 1.05, 1e-4, 1e-6}; the rows that do
+// not meet it yet say so, and tightening one is a change of that row only.
+// Columns: max folds, max tessellation/network diagonal, max G² jump
+// (gregory-g2, edges between G²-admissible vertices), max normal angle (°).
+constexpr Expectation kGoal{0, 1.05, 1e-4, 1e-6};
+
+std::vector<Case> corpus() {
+  auto tangents = [](double degrees) { return [=] { return turnEndTangents(builtinNetwork(kBase), degrees, 26); }; };
+  auto warped = [](double fraction) { return [=] { return warp(builtinNetwork(kBase), fraction); }; };
+  auto skewed = [](double degrees) {
+    return [=] {
+      int nodes = 0;
+      NetworkDescription d = skewXNodes(builtinNetwork(kXBase), degrees, nodes);
+      EXPECT_GT(nodes, 0) << kXBase << " has X-nodes to skew";
+      return d;
+    };
+  };
+  return {
+      //                                gregory-g1                composite-ribbon  gregory-g2
+      {"tangents-0.5deg", tangents(0.5), kGoal, kGoal, kGoal},
+      {"tangents-1deg", tangents(1.0), kGoal, kGoal, {9, 1.10, 1e-4, 1e-6}},   // G² patch folds (measured 9, 1.090)
+      {"tangents-3deg", tangents(3.0), {8, 1.05, inf, 1e-6}, kGoal, {12, 1.9, 1e-4, 1e-6}}, // 8 / 12, 1.883
+      {"warp-1pct", warped(0.01), kGoal, kGoal, kGoal},
+      {"warp-5pct", warped(0.05), kGoal, kGoal, kGoal},
+      {"x-skew-1deg", skewed(1.0), kGoal, kGoal, {4, 1.05, 1e-4, 1e-6}}, // saddle-nodes' G² folds, unskewed too
+      {"x-skew-5deg", skewed(5.0), kGoal, kGoal, {4, 1.05, 1e-4, 1e-6}},
+  };
+}
+
+bool printTable() { return std::getenv("CURVENET_CORPUS_TABLE") != nullptr; }
+
+void printRow(const std::string &name, Scheme scheme, const char *curves, const Figures &f) {
+  std::printf("| %-18s | %-16s | %-8s | %5d | %8.4f | %9.3g | %9.3g | %9.3g | %5zu |\n", name.c_str(),
+              schemeName(scheme).c_str(), curves, f.folds, f.diagonalRatio, f.maxJump, f.maxAngleDeg, f.excursion,
+              f.repairMoves);
+}
+
+void checkAgainst(const Figures &f, const Expectation &e) {
+  EXPECT_LE(f.folds, e.maxFolds);
+  EXPECT_LE(f.diagonalRatio, e.maxDiagonalRatio);
+  EXPECT_LE(f.maxJump, e.maxJump);
+  EXPECT_LE(f.maxAngleDeg, e.maxAngleDeg);
+}
+
+void runCase(const std::string &name, const Network &network, const Expectation *expect) {
+  const Scheme schemes[] = {Scheme::GregoryG1, Scheme::CompositeRibbon, Scheme::GregoryG2};
+  for (int k = 0; k < 3; ++k) {
+    SCOPED_TRACE(name + " " + schemeName(schemes[k]));
+    const Figures repaired = measure(network, schemes[k], CurveHandling::Repaired);
+    if (expect) checkAgainst(repaired, expect[k]);
+    if (printTable()) {
+      printRow(name, schemes[k], "repaired", repaired);
+      printRow(name, schemes[k], "kept", measure(network, schemes[k], CurveHandling::Kept));
+    }
+  }
+}
+
+} // namespace
+
+TEST(RobustnessCorpus, PerturbedBuiltins) {
+  if (printTable())
+    std::printf("| case | scheme | curves | folds | diag ratio | max jump (G2-adm.) | max normal angle ° | excursion | "
+                "moves |\n");
+  for (const Case &c : corpus()) {
+    const Network network = Network::build(c.make(), c.name);
+    const Expectation expect[] = {c.g1, c.cr, c.g2};
+    runCase(c.name, network, expect);
+  }
+}
+
+TEST(RobustnessCorpus, RepairMakesPerturbedVerticesAdmissibleWithoutMovingThem) {
+  const Network network = Network::build(turnEndTangents(builtinNetwork(kBase), 3.0, 26), "tangents-3deg");
+  const RepairResult repair = repairNetwork(network);
+  ASSERT_TRUE(repair.changed());
+  const Network repaired = Network::build(repair.network, "repaired");
+  ASSERT_EQ(repaired.vertices().size(), network.vertices().size());
+  for (size_t v = 0; v < network.vertices().size(); ++v)
+    EXPECT_EQ(norm(repaired.vertices()[v].position - network.vertices()[v].position), 0.0) << "vertex " << v;
+  const NetworkAnalysis after = analyzeNetwork(repaired);
+  EXPECT_LE(after.maxTangentResidual, 1e-9);
+  EXPECT_EQ(after.verdict, VertexVerdict::G2Admissible);
+  // Minimal: a tangent turned by at most the perturbation (3°) plus the plane's own tilt.
+  for (const RepairMove &m : repair.moves) {
+    if (m.kind == RepairKind::TangentPlane) {
+      EXPECT_LE(m.angle, 6.0 * pi / 180);
+    }
+    EXPECT_LE(m.sizeRelative, 0.05);
+  }
+}
+
+TEST(RobustnessCorpus, SharedDataFiles) {
+  const std::filesystem::path dir = std::filesystem::path(CURVENET_SHARED_DATA_DIR) / "transfinite-models";
+  if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << dir << " is absent: no real networks to run";
+  int files = 0;
+  for (const auto &entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().extension() != ".lop") continue;
+    ++files;
+    const Network network = Network::build(loadNetworkInput(entry.path().string()), entry.path().string());
+    // Known files have their row (what holds today; the goal is kGoal for
+    // every scheme); another file is measured and printed only.
+    const std::string name = entry.path().filename().string();
+    const std::map<std::string, std::array<Expectation, 3>> known = {
+        {"pocket3sided.lop", {{{1, 1.05, inf, 1e-6}, kGoal, {1, 1.05, 1e-4, 1e-6}}}}, // the Gregory patches fold
+        {"cagd86.lop", {{kGoal, kGoal, kGoal}}},
+    };
+    const auto row = known.find(name);
+    runCase(name, network, row != known.end() ? row->second.data() : nullptr);
+  }
+  EXPECT_GT(files, 0);
+}
+
+// An edit that turns a tangent out of its plane is repaired on the way, and
+// the rebuild stays partial: the repaired edit differs from the repaired
+// surface's network near the edited curve only. The result is a full build's.
+TEST(RobustnessCorpus, RepairedEditRebuildsPartially) {
+  const NetworkDescription description = builtinNetwork(kBase);
+  const Network network = Network::build(description);
+  const Surface before = Surface::build(network, {Scheme::GregoryG1});
+  ASSERT_TRUE(before.repairMoves().empty());
+  NetworkDescription turned = description;
+  std::mt19937 rng(7);
+  BSplineCurve &c = turned.curves[0];
+  std::vector<Vec3> p = c.controlPoints();
+  p[1] = p[0] + rotated(p[1] - p[0], randomPerpendicular(p[1] - p[0], rng), 2 * pi / 180);
+  c = withPoints(c, std::move(p));
+  const Network edited = Network::build(turned);
+  const SurfaceEdit edit = before.rebuildAfterEdit(edited);
+  EXPECT_TRUE(edit.partial);
+  EXPECT_LT(edit.changedFaces.size(), size_t(network.faces().size()));
+  EXPECT_FALSE(edit.surface.repairMoves().empty());
+  const Surface full = Surface::build(edited, {Scheme::GregoryG1});
+  EXPECT_EQ(edit.surface.repairMoves().size(), full.repairMoves().size());
+  for (int f = 0; f < full.faceCount(); ++f)
+    for (const Vec2 &uv : {Vec2{0, 0}, Vec2{0.3, 0.2}, Vec2{-0.4, 0.1}}) {
+      const SurfacePoint a = edit.surface.evaluate(f, uv), b = full.evaluate(f, uv);
+      EXPECT_EQ(norm(a.point - b.point), 0.0) << "face " << f;
+      EXPECT_EQ(norm(a.normal - b.normal), 0.0) << "face " << f;
+    }
+  EXPECT_LE(measureContinuity(edit.surface, {8}).maxNormalAngleDeg, 1e-6);
+}
