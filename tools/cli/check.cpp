@@ -5,11 +5,13 @@
 #include <tbb/global_control.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <optional>
 
 #include "commands.hpp"
 #include "progress.hpp"
 #include "curvenet/analysis.hpp"
+#include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
 #include "curvenet/network.hpp"
 #include "curvenet/surface.hpp"
@@ -40,18 +42,18 @@ Command addCheckCommand(CLI::App &app) {
   };
   auto options = std::make_shared<Options>();
   CLI::App *sub = app.add_subcommand("check", "Network analysis and continuity report");
-  sub->add_option("INPUT", options->input, "network file (.json, .lop) or builtin:NAME")->required();
+  sub->add_option("INPUT", options->input, "network file (.json, .lop), - (standard input) or builtin:NAME")->required();
   sub->add_flag("--json", options->json, "print one JSON object instead of tables");
-  sub->add_option("--scheme", options->scheme, "surface scheme whose continuity is measured")
+  sub->add_option("--scheme", options->scheme, "surface scheme whose continuity is measured: " + schemeChoices())
       ->capture_default_str();
   addMastersOption(sub, options->masters);
   sub->add_option("--samples", options->samples, "points per segment for the continuity figures")
-      ->check(CLI::Range(1, 100000))
+      ->check(wholeNumberIn(1, 100000))
       ->capture_default_str();
   sub->add_option("--resolution", options->resolution, "tessellation resolution for the reference deviation")
-      ->check(CLI::Range(1, 4096))
+      ->check(wholeNumberIn(1, 4096))
       ->capture_default_str();
-  sub->add_option("--threads", options->threads, "worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  addThreadsOption(sub, options->threads);
   CLI::Option *tweak = sub->add_flag("--tweak", options->tweak,
                                      "repair the curvatures at vertices that fail the Euler constraint "
                                      "(moves one control point per curve end along the vertex normal)");
@@ -67,11 +69,16 @@ Command addCheckCommand(CLI::App &app) {
             if (options->threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, options->threads);
             const SurfaceOptions surfaceOptions = parseSurfaceOptions(options->scheme, options->masters);
             const Scheme scheme = surfaceOptions.scheme;
-            const Network network = Network::build(loadNetworkInput(options->input), options->input);
+            if (options->tweak && std::filesystem::path(options->output).extension() != ".json")
+              throw InputError(options->output, "-o", "the repaired network is written in the native format: "
+                                                      "give a .json file");
+            const Network network = Network::build(loadNetworkArgument(options->input), options->input);
             nlohmann::json report = networkReport(network, options->input);
             addVertexAnalysis(report, analyzeNetwork(network));
             if (options->tweak) runTweak(network, options->output, report);
             const Surface surface = Surface::build(network, surfaceOptions);
+            refuseIfTooLarge(estimateReportBytes(surface, options->resolution),
+                             "--resolution " + std::to_string(options->resolution));
             warnAboutFolds(surface);
             addSurfaceReport(report, surface, options->samples, options->resolution);
             if (scheme == Scheme::BezierG1) {
