@@ -245,6 +245,18 @@ TEST_F(CliUsage, ListAlignsItsColumnsAndSpeaksJson) {
   }
 }
 
+// The patches refuse a face's geometry naming the face; the command adds the file.
+TEST_F(CliUsage, AFaceRefusedByItsGeometryNamesTheFile) {
+  // Three collinear lines: the loop folds back on itself at a corner (a cusp).
+  std::ofstream(dir / "flat.lop") << "3\n1\n4 0 0 1 1\n2 0 0 0 1 0 0\n1\n4 0 0 1 1\n2 1 0 0 2 0 0\n"
+                                      "1\n4 0 0 1 1\n2 2 0 0 0 0 0\n";
+  for (const std::string &command : std::vector<std::string>{"check", "tessellate -o " + path("f.obj"), "render -o " + path("f.png")}) {
+    const CliRun run = runCli(command + " " + path("flat.lop"));
+    EXPECT_EQ(run.exitCode, 1) << command;
+    EXPECT_TRUE(contains(run.err, "flat.lop: face 0") && contains(run.err, "cusp")) << command << "\n" << run.err;
+  }
+}
+
 TEST_F(CliUsage, CountsAgreeWithTheirNouns) {
   const CliRun run = runCli("check builtin:pentagon --samples 4 --resolution 2");
   ASSERT_EQ(run.exitCode, 0) << run.err;

@@ -76,7 +76,7 @@ Command addCheckCommand(CLI::App &app) {
             nlohmann::json report = networkReport(network, options->input);
             addVertexAnalysis(report, analyzeNetwork(network));
             if (options->tweak) runTweak(network, options->output, report);
-            const Surface surface = Surface::build(network, surfaceOptions);
+            const Surface surface = buildSurface(network, surfaceOptions, options->input);
             refuseIfTooLarge(estimateReportBytes(surface, options->resolution),
                              "--resolution " + std::to_string(options->resolution));
             warnAboutFolds(surface);

@@ -69,6 +69,9 @@ void checkMeshOutput(const std::string &path, const std::string &format, const s
 /// Writes the mesh to `path` (atomically) or, for `-`, to standard output, in
 /// `format` when given, else by the path's extension.
 void writeMeshArgument(const Mesh &mesh, const std::string &path, const std::string &format);
+/// Surface::build whose errors name `input` (the command's INPUT) when they
+/// name no file: a face's geometry is refused with the file it came from.
+Surface buildSurface(const Network &network, const SurfaceOptions &options, const std::string &input);
 /// Creates `folder` and its parents if missing; InputError naming it when
 /// that fails or when it exists as something other than a folder.
 void createOutputFolder(const std::string &folder);

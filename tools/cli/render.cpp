@@ -183,7 +183,7 @@ Command addRenderCommand(CLI::App &app) {
               return 0;
             }
             const Network network = Network::build(loadNetworkArgument(o->input), o->input);
-            const Surface surface = Surface::build(network, surfaceOptions);
+            const Surface surface = buildSurface(network, surfaceOptions, o->input);
             warnAboutFolds(surface);
             const RenderedPicture picture = renderPicture(surface, r, o->resolution, progressWanted(o->quiet), framed);
             render::writeImage(picture.image, o->output);

@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
+#include "curvenet/surface.hpp"
 
 namespace curvenet::cli {
 
@@ -74,6 +75,16 @@ void writeMeshArgument(const Mesh &mesh, const std::string &path, const std::str
   }
   if (format.empty()) return writeMeshFile(mesh, path);
   writeFileAtomically(path, [&](std::ostream &out) { writeMeshAs(mesh, ext, out); });
+}
+
+Surface buildSurface(const Network &network, const SurfaceOptions &options, const std::string &input) {
+  try {
+    return Surface::build(network, options);
+  } catch (const InputError &e) {
+    // The patches know the face, not the file it came from.
+    if (!e.file().empty()) throw;
+    throw InputError(input, e.element(), e.reason());
+  }
 }
 
 void createOutputFolder(const std::string &folder) {

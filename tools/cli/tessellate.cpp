@@ -42,7 +42,7 @@ Command addTessellateCommand(CLI::App &app) {
             if (!o->controlNets.empty() && scheme != Scheme::BezierG1 && scheme != Scheme::CoonsC0)
               throw InputError("", "--control-nets", "needs --scheme bezier-g1 or coons-c0");
             const Network network = Network::build(loadNetworkArgument(o->input), o->input);
-            const Surface surface = Surface::build(network, options);
+            const Surface surface = buildSurface(network, options, o->input);
             warnAboutFolds(surface);
             refuseIfTooLarge(estimateMeshBytes(estimateMeshVertices(surface, o->resolution), true),
                              "--resolution " + std::to_string(o->resolution));
