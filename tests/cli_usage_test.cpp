@@ -257,6 +257,16 @@ TEST_F(CliUsage, AFaceRefusedByItsGeometryNamesTheFile) {
   }
 }
 
+// The vertex analysis refuses a curve end without speed naming the vertex; check adds the file.
+TEST_F(CliUsage, AVertexRefusedByTheAnalysisNamesTheFile) {
+  // Curve 0 starts with a repeated control point: zero speed at vertex 0.
+  std::ofstream(dir / "still.lop") << "3\n3\n8 0 0 0 0 1 1 1 1\n4 0 0 0 0 0 0 0.6 0.1 0 1 0 0\n"
+                                       "1\n4 0 0 1 1\n2 1 0 0 0.5 1 0\n1\n4 0 0 1 1\n2 0.5 1 0 0 0 0\n";
+  const CliRun run = runCli("check " + path("still.lop"));
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_TRUE(contains(run.err, "still.lop: vertex 0") && contains(run.err, "zero speed")) << run.err;
+}
+
 TEST_F(CliUsage, CountsAgreeWithTheirNouns) {
   const CliRun run = runCli("check builtin:pentagon --samples 4 --resolution 2");
   ASSERT_EQ(run.exitCode, 0) << run.err;

@@ -74,7 +74,7 @@ Command addCheckCommand(CLI::App &app) {
                                                       "give a .json file");
             const Network network = Network::build(loadNetworkArgument(options->input), options->input);
             nlohmann::json report = networkReport(network, options->input);
-            addVertexAnalysis(report, analyzeNetwork(network));
+            addVertexAnalysis(report, namingInput(options->input, [&] { return analyzeNetwork(network); }));
             if (options->tweak) runTweak(network, options->output, report);
             const Surface surface = buildSurface(network, surfaceOptions, options->input);
             refuseIfTooLarge(estimateReportBytes(surface, options->resolution),

@@ -9,6 +9,7 @@
 #include <functional>
 #include <string>
 
+#include "curvenet/error.hpp"
 #include "curvenet/mesh.hpp"
 #include "curvenet/network.hpp"
 #include "curvenet/surface.hpp"
@@ -69,8 +70,18 @@ void checkMeshOutput(const std::string &path, const std::string &format, const s
 /// Writes the mesh to `path` (atomically) or, for `-`, to standard output, in
 /// `format` when given, else by the path's extension.
 void writeMeshArgument(const Mesh &mesh, const std::string &path, const std::string &format);
-/// Surface::build whose errors name `input` (the command's INPUT) when they
-/// name no file: a face's geometry is refused with the file it came from.
+/// `step()`, whose InputErrors name `input` (the command's INPUT) when they
+/// name no file: the engine's later stages (patches, vertex analysis) know
+/// the face or vertex, not the file it came from.
+template <class Step> auto namingInput(const std::string &input, Step &&step) -> decltype(step()) {
+  try {
+    return step();
+  } catch (const InputError &e) {
+    if (!e.file().empty()) throw;
+    throw InputError(input, e.element(), e.reason());
+  }
+}
+/// Surface::build through namingInput.
 Surface buildSurface(const Network &network, const SurfaceOptions &options, const std::string &input);
 /// Creates `folder` and its parents if missing; InputError naming it when
 /// that fails or when it exists as something other than a folder.

@@ -78,13 +78,7 @@ void writeMeshArgument(const Mesh &mesh, const std::string &path, const std::str
 }
 
 Surface buildSurface(const Network &network, const SurfaceOptions &options, const std::string &input) {
-  try {
-    return Surface::build(network, options);
-  } catch (const InputError &e) {
-    // The patches know the face, not the file it came from.
-    if (!e.file().empty()) throw;
-    throw InputError(input, e.element(), e.reason());
-  }
+  return namingInput(input, [&] { return Surface::build(network, options); });
 }
 
 void createOutputFolder(const std::string &folder) {
