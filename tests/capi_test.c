@@ -192,7 +192,8 @@ static void twoFaces(void) {
     fprintf(stderr, "%s\n", status.message);
     return;
   }
-  size_t vertices = 0, triangles = 0;
+  size_t vertices = 0, triangles = 0, rangeCount = 0;
+  EXPECT(curvenet_model_face_triangle_ranges(model, NULL, 0, &rangeCount, &status) == CURVENET_NO_MESH);
   EXPECT(curvenet_model_tessellate(model, CURVENET_ALL_FACES, 3, 0, &vertices, &triangles, &status) == CURVENET_OK);
   /* 6 corners, 7 segments × 2 edge samples, 2 × (1 + 4·2 + 4·2·1/2) inside. */
   EXPECT(vertices == 6 + 7 * 2 + 2 * (1 + 8 + 4) && triangles == 2 * 4 * 9);
@@ -204,6 +205,19 @@ static void twoFaces(void) {
     double worst = 0;
     for (size_t v = 0; v < vertices; ++v) worst = fabs(positions[3 * v + 2]) > worst ? fabs(positions[3 * v + 2]) : worst;
     EXPECT(worst < 1e-12);
+    /* Per-face triangle ranges: face 0 (left of x = 0.5) first, then face 1. */
+    uint32_t starts[3] = {0, 0, 0};
+    EXPECT(curvenet_model_face_triangle_ranges(model, NULL, 0, &rangeCount, &status) == CURVENET_OK && rangeCount == 3);
+    EXPECT(curvenet_model_face_triangle_ranges(model, starts, 2, NULL, &status) == CURVENET_BUFFER_TOO_SMALL);
+    EXPECT(strcmp(status.element, "starts") == 0);
+    EXPECT(curvenet_model_face_triangle_ranges(model, starts, 3, NULL, &status) == CURVENET_OK);
+    EXPECT(starts[0] == 0 && starts[0] < starts[1] && starts[1] < starts[2] && starts[2] == triangles);
+    for (int f = 0; f < 2; ++f)
+      for (uint32_t t = starts[f]; t < starts[f + 1] && t < triangles; ++t) {
+        double x = 0;
+        for (int k = 0; k < 3; ++k) x += positions[3 * indices[3 * t + k]] / 3;
+        EXPECT(f == 0 ? x < 0.5 : x > 0.5);
+      }
   }
   /* One face: 4 corners + 4 sides × 2 samples + 13 inside. */
   EXPECT(curvenet_model_tessellate(model, 1, 3, 0, &vertices, NULL, &status) == CURVENET_OK);

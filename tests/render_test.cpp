@@ -8,16 +8,20 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <numbers>
 
 #include "curvenet/builtins.hpp"
 #include "curvenet/curvature.hpp"
 #include "curvenet/error.hpp"
+#include "curvenet/io.hpp"
 #include "curvenet/network.hpp"
 #include "curvenet/surface.hpp"
 #include "curvenet/tessellate.hpp"
@@ -311,4 +315,139 @@ TEST(RenderCli, TheProgramStartsWithoutOpenImageIO) {
   ASSERT_EQ(::pclose(pipe), 0) << libraries;
   EXPECT_NE(libraries.find("libembree3"), std::string::npos) << libraries; // ldd listed the program's libraries
   EXPECT_EQ(libraries.find("OpenImageIO"), std::string::npos) << libraries;
+}
+
+// ------------------------------------------------------------ shading and framing
+
+namespace {
+
+/// A coarse sphere: the octahedron's faces split in four, vertices pushed to
+/// the unit sphere with their exact normals. Its triangles span many pixels.
+Mesh coarseSphere() {
+  Mesh mesh;
+  const Vec3 corners[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  const int faces[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  auto add = [&](const Vec3 &p) {
+    mesh.positions.push_back(normalized(p));
+    mesh.normals.push_back(normalized(p));
+    return static_cast<std::uint32_t>(mesh.positions.size() - 1);
+  };
+  for (const auto &f : faces) {
+    const Vec3 a = corners[f[0]], b = corners[f[1]], c = corners[f[2]];
+    const std::uint32_t ia = add(a), ib = add(b), ic = add(c), ab = add(a + b), bc = add(b + c), ca = add(c + a);
+    for (const std::array<std::uint32_t, 3> &t : {std::array{ia, ab, ca}, std::array{ab, ib, bc},
+                                                  std::array{ca, bc, ic}, std::array{ab, bc, ca}})
+      mesh.triangles.push_back(t);
+  }
+  return mesh;
+}
+
+} // namespace
+
+// Shading from the interpolated normal makes the reflection phase continuous
+// across the triangles' edges; from the flat triangle normal it is nearly
+// constant inside each triangle and jumps at its edges. On triangles tens of
+// pixels wide, a jump shows as a step between neighbouring pixels far larger
+// than the steps on either side of it (near the silhouette the phase changes
+// fast too, but smoothly: its neighbouring steps are as large).
+TEST(RenderShading, ReflectionPhaseFollowsTheInterpolatedNormalOnACoarseMesh) {
+  render::RenderOptions options;
+  options.width = 240, options.height = 180, options.threads = 1;
+  const render::Image image = render::renderMesh(coarseSphere(), options);
+  std::size_t steps = 0, jumps = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 1; x + 2 < image.width; ++x) {
+      const std::size_t i = std::size_t(y) * image.width + x;
+      bool inside = true; // four neighbours on the model, no silhouette pixel mixing in background
+      for (std::size_t k = i - 1; k <= i + 2; ++k) inside = inside && image.coverage[k] >= 1;
+      if (!inside) continue;
+      auto step = [&](std::size_t k) { return std::abs(double(image.phase[k + 1]) - image.phase[k]); };
+      const double before = step(i - 1), here = step(i), after = step(i + 1);
+      if (here > options.stripes) continue; // atan2's branch cut: a jump by 2K
+      ++steps;
+      jumps += here > 0.05 && here > 4 * std::max(before, after);
+    }
+  ASSERT_GT(steps, 5000u);
+  EXPECT_LT(double(jumps), 0.002 * double(steps))
+      << jumps << " of " << steps << " steps jump: the phase breaks at triangle edges (flat-normal shading?)";
+}
+
+namespace {
+
+/// Coverage of the framed default view of `mesh`: the fraction of the image
+/// the model covers and the share of width and height its pixels span.
+struct Framing {
+  double covered = 0, spanX = 0, spanY = 0;
+  bool touchesBorder = false;
+};
+
+Framing framedView(const Mesh &mesh) {
+  render::RenderOptions options;
+  options.width = 160, options.height = 120, options.threads = 1;
+  const render::View view = render::framingView(mesh);
+  options.azimuth = view.azimuth, options.elevation = view.elevation;
+  const render::Image image = render::renderMesh(mesh, options);
+  Framing f;
+  int minX = image.width, maxX = -1, minY = image.height, maxY = -1;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const double c = image.coverage[std::size_t(y) * image.width + x];
+      if (c <= 0) continue;
+      f.covered += c;
+      minX = std::min(minX, x), maxX = std::max(maxX, x), minY = std::min(minY, y), maxY = std::max(maxY, y);
+    }
+  f.covered /= double(image.width) * image.height;
+  f.spanX = double(maxX - minX + 1) / image.width, f.spanY = double(maxY - minY + 1) / image.height;
+  f.touchesBorder = minX == 0 || minY == 0 || maxX == image.width - 1 || maxY == image.height - 1;
+  return f;
+}
+
+void expectFramed(const Mesh &mesh, const std::string &name) {
+  const Framing f = framedView(mesh);
+  // Fitted: the model spans most of the width or the height, inside a margin.
+  EXPECT_GT(std::max(f.spanX, f.spanY), 0.8) << name;
+  EXPECT_FALSE(f.touchesBorder) << name;
+  // Not edge-on: the model covers a fair part of its own extent.
+  EXPECT_GT(f.covered / (f.spanX * f.spanY), 0.3) << name << " covers " << f.covered << " of the image";
+}
+
+} // namespace
+
+TEST(RenderFraming, DefaultViewFramesEveryBuiltin) {
+  for (const BuiltinInfo &info : builtinNetworks()) {
+    const Surface surface = Surface::build(Network::build(builtinNetwork(info.name)), {});
+    expectFramed(tessellate(surface, {4, 1}), info.name);
+  }
+}
+
+TEST(RenderFraming, DefaultViewFramesTheSharedModels) {
+  const std::filesystem::path models = std::filesystem::path(CURVENET_SHARED_DATA_DIR) / "transfinite-models";
+  if (!std::filesystem::is_directory(models)) GTEST_SKIP() << models << " is not there (shared data absent)";
+  int seen = 0;
+  for (const auto &entry : std::filesystem::directory_iterator(models)) {
+    if (entry.path().extension() != ".lop") continue;
+    const std::string file = entry.path().string();
+    const Surface surface = Surface::build(Network::build(readNetworkFile(file), file), {});
+    expectFramed(tessellate(surface, {8, 1}), entry.path().filename().string());
+    ++seen;
+  }
+  EXPECT_GT(seen, 0);
+}
+
+// An open model seen edge-on by a fixed default would cover a sliver; the
+// framing view looks at it from its mean normal.
+TEST(RenderFraming, AFlatModelIsSeenFaceOn) {
+  Mesh strip;
+  for (int i = 0; i <= 10; ++i)
+    for (double y : {0.0, 0.2}) {
+      strip.positions.push_back({0.0, y, 0.1 * i}); // a strip in the x = 0 plane
+      strip.normals.push_back({1, 0, 0});
+    }
+  for (std::uint32_t i = 0; i < 10; ++i)
+    strip.triangles.push_back({2 * i, 2 * i + 2, 2 * i + 1}), strip.triangles.push_back({2 * i + 1, 2 * i + 2, 2 * i + 3});
+  const render::View view = render::framingView(strip);
+  const double az = view.azimuth * std::numbers::pi / 180, el = view.elevation * std::numbers::pi / 180;
+  const Vec3 back{std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
+  EXPECT_GT(std::abs(back.x), std::cos(31 * std::numbers::pi / 180)); // within the 30 degrees of tilt
+  expectFramed(strip, "strip");
 }

@@ -11,6 +11,7 @@
 
 #include "bezier/bezier_surface.hpp"
 #include "curvenet/builtins.hpp"
+#include "curvenet/error.hpp"
 #include "curvenet/tessellate.hpp"
 #include "patches/patch.hpp"
 #include "plans/plan.hpp"
@@ -59,6 +60,34 @@ TEST(RibbonTable, ReproducesQuinticsAndKinksAtBreaks) {
   // Without the break the kink cannot be resolved to the tolerance.
   const RibbonTable blind(2, {}, exact);
   EXPECT_GT(blind.intervals(), table.intervals());
+}
+
+// Exact functions whose derivative disagrees with their values (a factor
+// of 2, as a wrong term of a derivative would) can never be tabulated to the
+// tolerance: building stops with an error saying so, after a bounded number
+// of evaluations, instead of refining everywhere and keeping a wrong table.
+TEST(RibbonTable, ADerivativeThatDisagreesWithItsValuesIsAnErrorAtBoundedCost) {
+  std::size_t evaluations = 0;
+  auto inconsistent = [&](std::span<const double> s, double *values, double *slopes) {
+    evaluations += s.size();
+    for (std::size_t k = 0; k < s.size(); ++k) values[k] = std::sin(3 * s[k]), slopes[k] = 2 * 3 * std::cos(3 * s[k]);
+  };
+  const std::vector<double> breaks = {0.25, 0.5, 0.75};
+  try {
+    const RibbonTable table(1, breaks, inconsistent);
+    ADD_FAILURE() << "built a table of " << table.intervals() << " intervals with value error " << table.valueError();
+  } catch (const InternalError &e) {
+    EXPECT_NE(std::string(e.what()).find("disagree"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("gap"), std::string::npos) << e.what();
+  }
+  // At most the depth limit (2^10 intervals below each of the 4 break
+  // intervals), a dozen evaluations each, doubled for the levels above.
+  EXPECT_LE(evaluations, std::size_t(4) * 1024 * 12 * 2);
+  // The consistent functions are tabulated as before.
+  auto consistent = [](std::span<const double> s, double *values, double *slopes) {
+    for (std::size_t k = 0; k < s.size(); ++k) values[k] = std::sin(3 * s[k]), slopes[k] = 3 * std::cos(3 * s[k]);
+  };
+  EXPECT_LE(RibbonTable(1, breaks, consistent).valueError(), 1e-13);
 }
 
 TEST(RibbonTable, MatchesExactRibbonsOfEveryBuiltin) {

@@ -1,9 +1,9 @@
-// libFuzzer harness: the triangle-mesh readers (OBJ, and OFF when the text
-// starts with "OFF"), then mesh approximation ([SV14] Sec. 5.3) of the
+// libFuzzer harness: the triangle-mesh readers (parseMeshText: PLY, OFF or
+// STL when the text starts like one, OBJ otherwise), then mesh approximation ([SV14] Sec. 5.3) of the
 // pentagon built-in's curves, as polylines, over the mesh read: the mesh
 // becomes the reference surface (local quadric fits), both surfaces are
 // built and every mesh vertex measured against them. The seeds are the
-// pentagon's own tessellation in both formats (fuzz_seed_corpus), so
+// pentagon's own tessellation in all four formats (fuzz_seed_corpus), so
 // mutations start from a mesh the curves lie on. Bad input must end in
 // InputError; anything else is a finding.
 #include <cmath>
@@ -22,10 +22,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
   const std::string text(reinterpret_cast<const char *>(data), size);
   Mesh mesh;
   try {
-    mesh = text.find_first_not_of(" \t\r\n") != std::string::npos &&
-                   text.compare(text.find_first_not_of(" \t\r\n"), 3, "OFF") == 0
-               ? parseOffMesh(text, "fuzz.off")
-               : parseObjMesh(text, "fuzz.obj");
+    mesh = parseMeshText(text, "fuzz-mesh");
   } catch (const InputError &) {
     return 0;
   }

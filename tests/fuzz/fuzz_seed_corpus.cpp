@@ -2,6 +2,7 @@
 // save it (the native-format harness), and, given MESH_DIR, the pentagon
 // built-in's tessellation as OBJ and OFF (the mesh harness, whose curves are
 // the pentagon's). Usage: fuzz_seed_corpus DIR [MESH_DIR]
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -34,6 +35,18 @@ int main(int argc, char **argv) {
       off << "OFF\n" << mesh.positions.size() << ' ' << mesh.triangles.size() << " 0\n";
       for (const curvenet::Vec3 &p : mesh.positions) off << p.x << ' ' << p.y << ' ' << p.z << '\n';
       for (const auto &t : mesh.triangles) off << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
+      std::ofstream ply(meshes / (name + ".ply"), std::ios::binary);
+      curvenet::writePly(mesh, ply);
+      std::ofstream stl(meshes / (name + ".stl"));
+      stl.precision(17);
+      stl << "solid " << name << '\n';
+      for (const auto &t : mesh.triangles) {
+        stl << "facet normal 0 0 0\nouter loop\n";
+        for (std::uint32_t v : t)
+          stl << "vertex " << mesh.positions[v].x << ' ' << mesh.positions[v].y << ' ' << mesh.positions[v].z << '\n';
+        stl << "endloop\nendfacet\n";
+      }
+      stl << "endsolid " << name << '\n';
     }
   }
   return 0;

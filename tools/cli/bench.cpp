@@ -190,11 +190,14 @@ Command addBenchCommand(CLI::App &app) {
   };
   auto o = std::make_shared<Options>();
   CLI::App *sub = app.add_subcommand("bench", "G1 vs G2 evaluation cost (Salvi and Varady 2014, Table 1 form)");
-  sub->add_option("INPUT", o->input, "network file (.json, .lop) or builtin:NAME (default builtin:pentagon)");
-  sub->add_option("--resolution", o->resolution, "tessellation resolution")->check(CLI::Range(1, 4096));
-  sub->add_option("--points", o->points, "random points for the pointwise evaluation")->check(CLI::Range(1, 10000000));
-  sub->add_option("--threads", o->threads, "threads for the parallel figures (0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+  sub->add_option("INPUT", o->input, "network file (.json, .lop) or builtin:NAME")->capture_default_str();
+  sub->add_option("--resolution", o->resolution, "tessellation resolution")
+      ->check(wholeNumberIn(1, 4096))
+      ->capture_default_str();
+  sub->add_option("--points", o->points, "random points for the pointwise evaluation")
+      ->check(wholeNumberIn(1, 10000000))
+      ->capture_default_str();
+  addThreadsOption(sub, o->threads);
   sub->add_flag("--json", o->json, "print one JSON object");
   addQuietFlag(sub, o->quiet); // accepted everywhere; bench shows no progress line
   return {sub, [o] {

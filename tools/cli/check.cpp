@@ -5,11 +5,13 @@
 #include <tbb/global_control.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <optional>
 
 #include "commands.hpp"
 #include "progress.hpp"
 #include "curvenet/analysis.hpp"
+#include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
 #include "curvenet/network.hpp"
 #include "curvenet/surface.hpp"
@@ -31,8 +33,9 @@ void runTweak(const Network &network, const std::string &output, nlohmann::json 
 
 nlohmann::json checkReport(const Network &network, const std::string &input, const CheckOptions &options) {
   nlohmann::json report = networkReport(network, input);
-  addVertexAnalysis(report, analyzeNetwork(network));
-  const Surface surface = Surface::build(network, options.surface);
+  addVertexAnalysis(report, namingInput(input, [&] { return analyzeNetwork(network); }));
+  const Surface surface = buildSurface(network, options.surface, input);
+  refuseIfTooLarge(estimateReportBytes(surface, options.resolution), "--resolution " + std::to_string(options.resolution));
   warnAboutFolds(surface);
   const ShapeReport shape = measureShape(surface);
   enforceShape(surface, shape, options.strict);
@@ -57,20 +60,20 @@ Command addCheckCommand(CLI::App &app) {
   };
   auto options = std::make_shared<Options>();
   CLI::App *sub = app.add_subcommand("check", "Network analysis and continuity report");
-  sub->add_option("INPUT", options->input, "network file (.json, .lop) or builtin:NAME")->required();
+  sub->add_option("INPUT", options->input, "network file (.json, .lop), - (standard input) or builtin:NAME")->required();
   sub->add_flag("--json", options->json, "print one JSON object instead of tables");
-  sub->add_option("--scheme", options->scheme, "surface scheme whose continuity is measured")
+  sub->add_option("--scheme", options->scheme, "surface scheme whose continuity is measured: " + schemeChoices())
       ->capture_default_str();
   addMastersOption(sub, options->masters);
   addCurvesOption(sub, options->curves);
   addStrictFlag(sub, options->strict);
   sub->add_option("--samples", options->samples, "points per segment for the continuity figures")
-      ->check(CLI::Range(1, 100000))
+      ->check(wholeNumberIn(1, 100000))
       ->capture_default_str();
   sub->add_option("--resolution", options->resolution, "tessellation resolution for the reference deviation")
-      ->check(CLI::Range(1, 4096))
+      ->check(wholeNumberIn(1, 4096))
       ->capture_default_str();
-  sub->add_option("--threads", options->threads, "worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  addThreadsOption(sub, options->threads);
   CLI::Option *tweak = sub->add_flag("--tweak", options->tweak,
                                      "repair the curvatures at vertices that fail the Euler constraint "
                                      "(moves one control point per curve end along the vertex normal)");
@@ -86,7 +89,10 @@ Command addCheckCommand(CLI::App &app) {
             if (options->threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, options->threads);
             const SurfaceOptions surfaceOptions =
                 parseSurfaceOptions(options->scheme, options->masters, options->curves);
-            const Network network = Network::build(loadNetworkInput(options->input), options->input);
+            if (options->tweak && std::filesystem::path(options->output).extension() != ".json")
+              throw InputError(options->output, "-o", "the repaired network is written in the native format: "
+                                                      "give a .json file");
+            const Network network = Network::build(loadNetworkArgument(options->input), options->input);
             // The surface first: --strict refuses before --tweak writes its file.
             nlohmann::json report = checkReport(
                 network, options->input, {surfaceOptions, options->samples, options->resolution, options->strict});

@@ -4,6 +4,7 @@
 
 #include "commands.hpp"
 #include "curvenet/error.hpp"
+#include "curvenet/surface.hpp"
 #include "curvenet/tessellate.hpp"
 
 namespace curvenet::cli {
@@ -13,6 +14,14 @@ double estimateMeshBytes(std::size_t vertices, bool writesText) {
   // per-face staging of the tessellator (~32 B), and for OBJ/PLY output the
   // formatted text held before writing (~150 B per vertex with its triangles).
   return static_cast<double>(vertices) * (48 + 24 + 32 + (writesText ? 150 : 0));
+}
+
+double estimateReportBytes(const Surface &surface, int resolution) {
+  // The reference deviation tessellates at `resolution` recording each
+  // vertex's domain point (24 B) and measures every vertex (~16 B); the
+  // continuity figures' samples are few beside it.
+  const double vertices = static_cast<double>(estimateMeshVertices(surface, resolution));
+  return estimateMeshBytes(static_cast<std::size_t>(vertices), false) + 40 * vertices;
 }
 
 void refuseIfTooLarge(double bytes, const std::string &what) {

@@ -3,6 +3,9 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <algorithm>
+#include <cctype>
+#include <numbers>
 #include <regex>
 
 #include "commands.hpp"
@@ -16,8 +19,48 @@
 
 namespace curvenet::cli {
 
+namespace {
+
+/// Whether a render INPUT names a mesh file (rendered as it is) rather than a network.
+bool isMeshFile(const std::string &input) {
+  std::string ext = std::filesystem::path(input).extension().string();
+  for (char &c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".obj" || ext == ".ply" || ext == ".off" || ext == ".stl";
+}
+
+/// Unit vertex normals weighted by the triangles' areas (a mesh file carries
+/// none the readers keep); InputError naming `file` when a vertex has none.
+void addAreaWeightedNormals(Mesh &mesh, const std::string &file) {
+  mesh.normals.assign(mesh.positions.size(), Vec3{});
+  for (const auto &t : mesh.triangles) {
+    const Vec3 n = cross(mesh.positions[t[1]] - mesh.positions[t[0]], mesh.positions[t[2]] - mesh.positions[t[0]]);
+    for (std::uint32_t v : t) mesh.normals[v] += n;
+  }
+  for (std::size_t v = 0; v < mesh.normals.size(); ++v) {
+    const double length = norm(mesh.normals[v]);
+    // An unused or degenerate vertex is never hit by a ray: any unit normal will do.
+    mesh.normals[v] = length > 0 ? mesh.normals[v] / length : Vec3{0, 0, 1};
+  }
+  if (mesh.triangles.empty()) throw InputError(file, {}, "the mesh has no triangles");
+}
+
+} // namespace
+
+RenderedPicture renderMeshPicture(Mesh mesh, const render::RenderOptions &options, bool showProgress) {
+  const auto start = std::chrono::steady_clock::now();
+  ProgressLine progress("render", showProgress);
+  render::RenderOptions withProgress = options;
+  withProgress.progress = progress.callback();
+  RenderedPicture out;
+  out.image = render::renderMesh(mesh, withProgress);
+  progress.clear();
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.mesh = std::move(mesh);
+  return out;
+}
+
 RenderedPicture renderPicture(const Surface &surface, const render::RenderOptions &options, int resolution,
-                              bool showProgress) {
+                              bool showProgress, bool framed) {
   const bool curvatureMode = options.mode == render::Mode::Mean || options.mode == render::Mode::Gauss;
   TessellationOptions t;
   t.resolution = resolution;
@@ -31,6 +74,11 @@ RenderedPicture renderPicture(const Surface &surface, const render::RenderOption
                        std::to_string(options.height));
   RenderedPicture out;
   out.mesh = tessellateShowingProgress(surface, t, "tessellate", showProgress);
+  render::RenderOptions withProgress = options;
+  if (framed) {
+    const render::View view = render::framingView(out.mesh);
+    withProgress.azimuth = view.azimuth, withProgress.elevation = view.elevation;
+  }
   std::vector<double> values;
   if (curvatureMode) {
     CurvatureOptions c;
@@ -40,7 +88,6 @@ RenderedPicture renderPicture(const Surface &surface, const render::RenderOption
   }
   const auto start = std::chrono::steady_clock::now();
   ProgressLine progress("render", showProgress);
-  render::RenderOptions withProgress = options;
   withProgress.progress = progress.callback();
   out.image = render::renderMesh(out.mesh, withProgress, values);
   progress.clear();
@@ -59,28 +106,37 @@ void printPictureLine(const std::string &path, const RenderedPicture &p) {
 
 Command addRenderCommand(CLI::App &app) {
   struct Options {
-    std::string input, output, scheme = "gregory-g1", masters = "rebuilt", curves = "repaired", mode = "reflection", size = "800x600", view = "30,30";
+    std::string input, output, scheme = "gregory-g1", masters = "rebuilt", curves = "repaired", mode = "reflection", size = "800x600", view;
     double stripes = 8;
     bool boundaries = false, quiet = false, strict = false;
     int resolution = 32, threads = 0;
   };
   auto o = std::make_shared<Options>();
   CLI::App *sub = app.add_subcommand("render", "Ray-traced reflection lines, isophotes and curvature maps");
-  sub->add_option("INPUT", o->input, "network file (.json, .lop) or builtin:NAME")->required();
+  sub->add_option("INPUT", o->input,
+                  "network file (.json, .lop) or builtin:NAME; or a mesh file (.obj, .ply, .off, .stl), shown as it "
+                  "is; - = either on standard input")
+      ->required();
   sub->add_option("-o,--output", o->output, "output image (.png 8-bit sRGB, .exr float with a phase channel)")
       ->required();
-  sub->add_option("--scheme", o->scheme, "gregory-g1 | composite-ribbon");
+  sub->add_option("--scheme", o->scheme, schemeChoices())->capture_default_str();
   addMastersOption(sub, o->masters);
   addCurvesOption(sub, o->curves);
   addStrictFlag(sub, o->strict);
-  sub->add_option("--mode", o->mode, "reflection | isophote | mean | gauss");
-  sub->add_option("--size", o->size, "image size WxH (default 800x600)");
-  sub->add_option("--view", o->view, "camera azimuth,elevation in degrees (default 30,30)");
-  sub->add_option("--stripes", o->stripes, "light lines per half turn / isophote stripes (default 8)");
+  sub->add_option("--mode", o->mode, "reflection | isophote | mean | gauss (mean, gauss: networks only)")
+      ->capture_default_str();
+  sub->add_option("--size", o->size, "image size WxH, each at most 16384")->capture_default_str();
+  sub->add_option("--view", o->view,
+                  "camera azimuth,elevation in degrees (default: framed, from the model's mean normal or across its "
+                  "thinnest axis, tilted 30 degrees)");
+  sub->add_option("--stripes", o->stripes, "light lines per half turn / isophote stripes")
+      ->check(numberIn(1e-6, 1e6))
+      ->capture_default_str();
   sub->add_flag("--boundaries", o->boundaries, "overlay the patch boundaries");
-  sub->add_option("--resolution", o->resolution, "tessellation intervals per segment (default 32)")
-      ->check(CLI::Range(1, 4096));
-  sub->add_option("--threads", o->threads, "worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  sub->add_option("--resolution", o->resolution, "tessellation intervals per segment")
+      ->check(wholeNumberIn(1, 4096))
+      ->capture_default_str();
+  addThreadsOption(sub, o->threads);
   addQuietFlag(sub, o->quiet);
   return {sub, [o] {
             // Every option is checked before any work, so a mistake costs nothing and writes nothing.
@@ -92,29 +148,48 @@ Command addRenderCommand(CLI::App &app) {
             if (auto m = render::modeFromName(o->mode)) r.mode = *m;
             else throw InputError("", "--mode", "unknown mode '" + o->mode + "'; available: reflection, isophote, mean, gauss");
             std::smatch match;
-            static const std::regex sizePattern(R"(^([0-9]{1,5})[xX]([0-9]{1,5})$)");
+            static const std::regex sizePattern(R"(^([0-9]{1,9})[xX]([0-9]{1,9})$)");
             if (!std::regex_match(o->size, match, sizePattern))
               throw InputError("", "--size", "expected WxH, e.g. 800x600, got '" + o->size + "'");
             r.width = std::stoi(match[1]);
             r.height = std::stoi(match[2]);
             if (r.width < 1 || r.height < 1 || r.width > 16384 || r.height > 16384)
-              throw InputError("", "--size", "width and height must lie in [1, 16384]");
+              throw InputError("", "--size", o->size + ": width and height must lie in [1, 16384]");
             static const std::regex viewPattern(R"(^\s*([-+]?[0-9]*\.?[0-9]+)\s*,\s*([-+]?[0-9]*\.?[0-9]+)\s*$)");
-            if (!std::regex_match(o->view, match, viewPattern))
-              throw InputError("", "--view", "expected AZ,EL in degrees, e.g. 30,30, got '" + o->view + "'");
-            r.azimuth = std::stod(match[1]);
-            r.elevation = std::stod(match[2]);
-            if (!(o->stripes > 0)) throw InputError("", "--stripes", "must be positive");
+            const bool framed = o->view.empty();
+            if (!framed) {
+              if (!std::regex_match(o->view, match, viewPattern))
+                throw InputError("", "--view", "expected AZ,EL in degrees, e.g. 30,30, got '" + o->view + "'");
+              r.azimuth = std::stod(match[1]);
+              r.elevation = std::stod(match[2]);
+            }
             r.stripes = o->stripes;
             r.boundaries = o->boundaries;
             r.threads = o->threads;
 
-            const Network network = Network::build(loadNetworkInput(o->input), o->input);
-            const Surface surface = Surface::build(network, surfaceOptions);
+            if (isMeshFile(o->input) || (isStandardStream(o->input) && !standardInputIsNetwork())) {
+              if (r.mode == render::Mode::Mean || r.mode == render::Mode::Gauss)
+                throw InputError(o->input, "--mode", o->mode + " needs a network (a mesh file has no patches to measure "
+                                                               "curvature on); use reflection or isophote");
+              Mesh mesh = readMeshArgument(o->input);
+              addAreaWeightedNormals(mesh, o->input);
+              refuseIfTooLarge(2 * estimateMeshBytes(mesh.positions.size(), false) + 24 * double(r.width) * r.height,
+                               o->input + " at " + o->size);
+              if (framed) {
+                const render::View view = render::framingView(mesh);
+                r.azimuth = view.azimuth, r.elevation = view.elevation;
+              }
+              const RenderedPicture picture = renderMeshPicture(std::move(mesh), r, progressWanted(o->quiet));
+              render::writeImage(picture.image, o->output);
+              printPictureLine(o->output, picture);
+              return 0;
+            }
+            const Network network = Network::build(loadNetworkArgument(o->input), o->input);
+            const Surface surface = buildSurface(network, surfaceOptions, o->input);
             warnAboutFolds(surface);
             noteRepair(surface);
             enforceShape(surface, measureShape(surface), o->strict);
-            const RenderedPicture picture = renderPicture(surface, r, o->resolution, progressWanted(o->quiet));
+            const RenderedPicture picture = renderPicture(surface, r, o->resolution, progressWanted(o->quiet), framed);
             render::writeImage(picture.image, o->output);
             printPictureLine(o->output, picture);
             return 0;

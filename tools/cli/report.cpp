@@ -297,11 +297,16 @@ void printAnalysisTable(const nlohmann::json &report, int maxRows) {
   }
 }
 
+std::string counted(std::size_t n, const char *one, const char *many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
 void printReportTable(const nlohmann::json &report) {
-  std::printf("network %s (%s): %d patches, %d segments, %zu vertices, diagonal %.6g\n",
-              report["name"].get<std::string>().c_str(), report["input"].get<std::string>().c_str(),
-              report["patches"].get<int>(), report["segments"].get<int>(), report["vertices"].size(),
-              report["diagonal"].get<double>());
+  std::printf("network %s (%s): %s, %s, %s, diagonal %.6g\n", report["name"].get<std::string>().c_str(),
+              report["input"].get<std::string>().c_str(),
+              counted(report["patches"].get<std::size_t>(), "patch", "patches").c_str(),
+              counted(report["segments"].get<std::size_t>(), "segment", "segments").c_str(),
+              counted(report["vertices"].size(), "vertex", "vertices").c_str(), report["diagonal"].get<double>());
   std::printf("faces by number of sides:");
   for (auto &[sides, count] : report["faces_by_sides"].items()) std::printf("  %s: %d", sides.c_str(), count.get<int>());
   std::printf("\n\n");
@@ -339,10 +344,13 @@ void printReportTable(const nlohmann::json &report) {
                 sh["worst_fairness_face"].get<int>(), sh["acceptable"].get<bool>() ? "" : " — REJECTED faces listed in --json");
   }
   if (report.contains("composite_faces")) {
-    std::printf("\ncomposite faces (split by hidden connection curves; %d user faces):\n", report["faces"].get<int>());
+    std::printf("\ncomposite faces (split by hidden connection curves; %s):\n",
+                counted(report["faces"].get<std::size_t>(), "user face", "user faces").c_str());
     for (const auto &c : report["composite_faces"])
-      std::printf("  face %d: %zu patches, %zu hidden seams, max seam curvature jump %.3g%s\n", c["face"].get<int>(),
-                  c["patches"].size(), c["hidden_seams"].size(), c["max_seam_curvature_jump"].get<double>(),
+      std::printf("  face %d: %s, %s, max seam curvature jump %.3g%s\n", c["face"].get<int>(),
+                  counted(c["patches"].size(), "patch", "patches").c_str(),
+                  counted(c["hidden_seams"].size(), "hidden seam", "hidden seams").c_str(),
+                  c["max_seam_curvature_jump"].get<double>(),
                   c["folded"].get<bool>() ? ", FOLDED" : "");
   }
   if (report.contains("masters")) {

@@ -17,29 +17,34 @@ namespace curvenet::cli {
 
 Command addTessellateCommand(CLI::App &app) {
   struct Options {
-    std::string input, output, scheme = "gregory-g1", masters = "rebuilt", curves = "repaired", controlNets;
+    std::string input, output, format, scheme = "gregory-g1", masters = "rebuilt", curves = "repaired", controlNets;
     int resolution = 16, threads = 0;
     bool quiet = false, strict = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App *sub = app.add_subcommand("tessellate", "Tessellate every face into one watertight mesh");
-  sub->add_option("INPUT", o->input, "network file (.json, .lop) or builtin:NAME")->required();
-  sub->add_option("-o,--output", o->output, "output mesh (.obj or .ply)")->required();
-  sub->add_option("--scheme", o->scheme, "gregory-g1 | composite-ribbon | bezier-g1 | coons-c0");
+  sub->add_option("INPUT", o->input, "network file (.json, .lop), - (standard input) or builtin:NAME")->required();
+  sub->add_option("-o,--output", o->output, "output mesh (.obj or .ply; - = standard output, with --format)")->required();
+  sub->add_option("--format", o->format, "mesh format when the output's extension does not say it")
+      ->check(CLI::IsMember({"obj", "ply"}));
+  sub->add_option("--scheme", o->scheme, schemeChoices())->capture_default_str();
   addMastersOption(sub, o->masters);
   addCurvesOption(sub, o->curves);
   addStrictFlag(sub, o->strict);
   sub->add_option("--control-nets", o->controlNets, "also write the quintic control nets as JSON (bezier-g1, coons-c0)");
-  sub->add_option("--resolution", o->resolution, "intervals per segment")->check(CLI::Range(1, 4096));
-  sub->add_option("--threads", o->threads, "worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  sub->add_option("--resolution", o->resolution, "intervals per segment")
+      ->check(wholeNumberIn(1, 4096))
+      ->capture_default_str();
+  addThreadsOption(sub, o->threads);
   addQuietFlag(sub, o->quiet);
   return {sub, [o] {
+            checkMeshOutput(o->output, o->format, "--output");
             const SurfaceOptions options = parseSurfaceOptions(o->scheme, o->masters, o->curves);
             const Scheme scheme = options.scheme;
             if (!o->controlNets.empty() && scheme != Scheme::BezierG1 && scheme != Scheme::CoonsC0)
               throw InputError("", "--control-nets", "needs --scheme bezier-g1 or coons-c0");
-            const Network network = Network::build(loadNetworkInput(o->input), o->input);
-            const Surface surface = Surface::build(network, options);
+            const Network network = Network::build(loadNetworkArgument(o->input), o->input);
+            const Surface surface = buildSurface(network, options, o->input);
             warnAboutFolds(surface);
             noteRepair(surface);
             enforceShape(surface, measureShape(surface), o->strict);
@@ -47,9 +52,9 @@ Command addTessellateCommand(CLI::App &app) {
                              "--resolution " + std::to_string(o->resolution));
             const Mesh mesh = tessellateShowingProgress(surface, {o->resolution, o->threads}, "tessellate",
                                                         progressWanted(o->quiet));
-            writeMeshFile(mesh, o->output);
+            writeMeshArgument(mesh, o->output, o->format);
             if (!o->controlNets.empty()) writeControlNets(surface, o->controlNets);
-            std::printf("%s: %zu vertices, %zu triangles (%s, resolution %d)\n", o->output.c_str(),
+            std::fprintf(summaryStream(o->output), "%s: %zu vertices, %zu triangles (%s, resolution %d)\n", o->output.c_str(),
                         mesh.positions.size(), mesh.triangles.size(), o->scheme.c_str(), o->resolution);
             return 0;
           }};
@@ -62,14 +67,14 @@ Command addDemoCommand(CLI::App &app) {
   };
   auto o = std::make_shared<Options>();
   CLI::App *sub = app.add_subcommand("demo", "The main job on the built-in default network");
-  sub->add_option("--out", o->out, "output folder");
+  sub->add_option("--out", o->out, "output folder")->capture_default_str();
   addQuietFlag(sub, o->quiet);
   return {sub, [o] {
             const std::string *out = &o->out;
             const bool showProgress = progressWanted(o->quiet);
             const std::string input = "builtin:" + defaultBuiltinName();
             const Network network = Network::build(builtinNetwork(defaultBuiltinName()), input);
-            std::filesystem::create_directories(*out);
+            createOutputFolder(*out);
             nlohmann::json report = networkReport(network, input);
             for (Scheme scheme : availableSchemes()) {
               if (!acceptsAnyLoop(scheme)) continue; // the default network has 5- and 6-sided loops

@@ -76,11 +76,28 @@ Camera frame(const Mesh &mesh, const RenderOptions &o) {
   c.up = cross(c.right, c.forward);
   c.tanHalfV = std::tan(15.0 * std::numbers::pi / 180);
   c.tanHalfH = c.tanHalfV * o.width / o.height;
-  // The bounding sphere about the box centre: the model fills the frame from any view.
-  double radius = 1e-12;
-  for (const Vec3 &p : mesh.positions) radius = std::max(radius, norm(p - box.center()));
-  const double halfFov = std::atan(std::min(c.tanHalfH, c.tanHalfV));
-  c.eye = box.center() + c.back * (1.04 * radius / std::sin(halfFov));
+  // Fitted to the image: the eye sits on the view axis through the middle of
+  // the model's projected extent, as close as lets every vertex in, with a
+  // small margin (a bounding sphere would leave a long model small).
+  const Vec3 centre = box.center();
+  double minX = INFINITY, maxX = -INFINITY, minY = INFINITY, maxY = -INFINITY;
+  for (const Vec3 &p : mesh.positions) {
+    const double x = dot(p - centre, c.right), y = dot(p - centre, c.up);
+    minX = std::min(minX, x), maxX = std::max(maxX, x), minY = std::min(minY, y), maxY = std::max(maxY, y);
+  }
+  const Vec3 aim = centre + c.right * ((minX + maxX) / 2) + c.up * ((minY + maxY) / 2);
+  constexpr double margin = 0.94; // of the half-width and half-height
+  double distance = 0, depth = 0;
+  for (const Vec3 &p : mesh.positions) {
+    const Vec3 d = p - aim;
+    const double z = dot(d, c.back);
+    depth = std::max(depth, std::abs(z));
+    distance = std::max({distance, z + std::abs(dot(d, c.right)) / (margin * c.tanHalfH),
+                         z + std::abs(dot(d, c.up)) / (margin * c.tanHalfV)});
+  }
+  // Never inside the model, and at a positive distance even for a single point.
+  distance = std::max({distance, 1.05 * depth, 1e-12 + 0.1 * norm(box.max - box.min)});
+  c.eye = aim + c.back * distance;
   return c;
 }
 
@@ -471,6 +488,55 @@ void writeImage(const Image &img, const std::string &path) {
   writeFileAtomically(path, [&](std::ostream &file) {
     file.write(reinterpret_cast<const char *>(encoded.data()), static_cast<std::streamsize>(encoded.size()));
   });
+}
+
+View framingView(const Mesh &mesh) {
+  // The area-weighted mean normal says where an open model faces; a closed
+  // one (mean normal ~0) is seen across its thinnest principal axis.
+  Vec3 meanNormal{}, centroid{};
+  double area = 0;
+  for (const auto &t : mesh.triangles) {
+    const Vec3 &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+    const Vec3 n = cross(b - a, c - a);
+    meanNormal += n / 2;
+    area += norm(n) / 2;
+    centroid += (a + b + c) * (norm(n) / 6);
+  }
+  Vec3 direction;
+  if (area > 0 && norm(meanNormal) > 0.25 * area) {
+    direction = meanNormal / norm(meanNormal);
+  } else {
+    centroid = area > 0 ? centroid / area : mesh.bounds().center();
+    double covariance[3][3] = {};
+    for (const Vec3 &p : mesh.positions) {
+      const double d[3] = {p.x - centroid.x, p.y - centroid.y, p.z - centroid.z};
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) covariance[i][j] += d[i] * d[j];
+    }
+    // The thinnest axis: the dominant eigenvector of trace·I − C (power iteration).
+    const double trace = covariance[0][0] + covariance[1][1] + covariance[2][2];
+    direction = normalized(Vec3{0.2, 0.3, 1});
+    for (int iteration = 0; iteration < 200; ++iteration) {
+      const double v[3] = {direction.x, direction.y, direction.z};
+      double w[3];
+      for (int i = 0; i < 3; ++i)
+        w[i] = trace * v[i] - (covariance[i][0] * v[0] + covariance[i][1] * v[1] + covariance[i][2] * v[2]);
+      const Vec3 next{w[0], w[1], w[2]};
+      if (!(norm(next) > 0)) break;
+      direction = normalized(next);
+    }
+    if (direction.z < 0) direction = -direction; // from above rather than below
+  }
+  // Tilted 30 degrees towards the usual view from the +x+y+z octant, so that
+  // relief along the direction shows (a face-on view flattens it).
+  const Vec3 usual = normalized(Vec3{1, 1, 1});
+  Vec3 side = usual - direction * dot(usual, direction);
+  if (norm(side) < 1e-6) side = std::abs(direction.z) < 0.9 ? Vec3{0, 0, 1} - direction * direction.z : Vec3{1, 0, 0};
+  side = normalized(side);
+  const double tilt = 30 * std::numbers::pi / 180;
+  const Vec3 back = direction * std::cos(tilt) + side * std::sin(tilt);
+  constexpr double degrees = 180 / std::numbers::pi;
+  return {std::atan2(back.y, back.x) * degrees, std::asin(std::clamp(back.z, -1.0, 1.0)) * degrees};
 }
 
 } // namespace curvenet::render

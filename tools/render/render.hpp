@@ -55,7 +55,9 @@ std::optional<Mode> modeFromName(const std::string &name);
 
 struct RenderOptions {
   int width = 800, height = 600; ///< pixels, each in [1, 16384]
-  double azimuth = 30, elevation = 30; ///< camera direction in degrees (any finite value)
+  /// Camera direction in degrees (any finite value); the camera is placed so
+  /// that the model's projection fills the image up to a 6% margin.
+  double azimuth = 30, elevation = 30;
   Mode mode = Mode::Reflection;
   double stripes = 8;      ///< K > 0: light lines per half turn / isophote stripes per unit of n·L
   bool boundaries = false; ///< overlay the patch-boundary and border edges (about 1.5 px wide)
@@ -92,6 +94,16 @@ Image renderMesh(const Mesh &mesh, const RenderOptions &options, std::span<const
 /// The picture as 8-bit sRGB, 3 bytes per pixel, rows top to bottom: the
 /// pixels of the PNG that writeImage writes.
 std::vector<std::uint8_t> srgbBytes(const Image &image);
+
+/// A camera direction (RenderOptions::azimuth, elevation), degrees.
+struct View {
+  double azimuth = 30, elevation = 30;
+};
+/// The direction that shows `mesh` best: from its area-weighted mean normal
+/// when it is open and faces one way, else across its thinnest principal axis
+/// (from above), tilted 30 degrees towards the +x+y+z octant so relief shows.
+/// renderMesh then fits the model's projection to the image.
+View framingView(const Mesh &mesh);
 
 /// Writes `image` by the extension of `path`: .png (8-bit sRGB RGB, a text
 /// description with mode and range) or .exr (32-bit float channels R, G, B

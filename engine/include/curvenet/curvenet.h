@@ -273,7 +273,17 @@ curvenet_status_code curvenet_model_copy_mesh(const curvenet_model *model, doubl
                                               uint32_t *triangles, size_t triangle_capacity,
                                               curvenet_status *status);
 
-/* Writes the kept mesh as OBJ or PLY by the extension of `path`, atomically. */
+/* The kept mesh's triangles per network face: starts[f] .. starts[f + 1] - 1
+ * are the triangles of face f (a whole-network mesh: face count + 1 entries;
+ * a one-face mesh: 2 entries). The number of entries goes to *count (may be
+ * NULL); `starts` NULL with capacity 0 asks only for it. A capacity below it:
+ * CURVENET_BUFFER_TOO_SMALL; no mesh: CURVENET_NO_MESH. */
+curvenet_status_code curvenet_model_face_triangle_ranges(const curvenet_model *model, uint32_t *starts,
+                                                         size_t capacity, size_t *count, curvenet_status *status);
+
+/* Writes the kept mesh as OBJ or PLY by the extension of `path`, atomically.
+ * OBJ puts each face's triangles in a group `g faceN`; PLY gives every
+ * triangle a `face` property, the network face it belongs to. */
 curvenet_status_code curvenet_model_write_mesh(const curvenet_model *model, const char *path,
                                                curvenet_status *status);
 

@@ -7,8 +7,11 @@
 //    number of curves; per curve: degree; knot count and knots; control-point
 //    count and x y z triples).
 //  * meshes: Wavefront OBJ and binary little-endian PLY, both with normals.
-//  * mesh input (curvenet approximate): OBJ (`v` and `f` records; polygons
-//    are fan-triangulated; other records ignored) and OFF (ASCII).
+//  * mesh input (curvenet approximate, render): OBJ (`v` and `f` records;
+//    polygons are fan-triangulated; other records ignored), OFF (ASCII), PLY
+//    (ASCII and binary; `vertex` x y z and `face` vertex_indices, other
+//    elements and properties skipped) and STL (ASCII and binary; equal
+//    corners merged into one vertex).
 //
 // Errors: every reader throws InputError naming the file, the element or line,
 // and what is wrong. Writers never leave a partial file behind: they write to
@@ -26,6 +29,8 @@ namespace curvenet {
 inline namespace v1 {
 
 /// Parses a native network document; `file` is only used in error messages.
+/// Arrays and objects nested more than 64 deep are refused (the format needs
+/// 5), as soon as the parser reaches that depth.
 NetworkDescription parseNetworkJson(const std::string &text, const std::string &file = {});
 /// The native document for a description (pretty-printed JSON).
 std::string networkToJson(const NetworkDescription &description);
@@ -54,7 +59,12 @@ std::string readTextFile(const std::string &path);
 /// range, a face with fewer than 3 corners, no triangles at all.
 Mesh parseObjMesh(const std::string &text, const std::string &file = {});
 Mesh parseOffMesh(const std::string &text, const std::string &file = {});
-/// Reads .obj or .off by extension.
+Mesh parsePlyMesh(const std::string &text, const std::string &file = {});
+Mesh parseStlMesh(const std::string &text, const std::string &file = {});
+/// A mesh in any of the formats above, recognised from the content ("ply",
+/// "OFF", "solid" or binary bytes for STL, OBJ otherwise): for standard input.
+Mesh parseMeshText(const std::string &text, const std::string &file = {});
+/// Reads .obj, .off, .ply or .stl by extension.
 Mesh readMeshFile(const std::string &path);
 
 /// OBJ text: `v` lines, `vn` lines when the mesh has normals (faces then

@@ -392,6 +392,23 @@ curvenet_status_code curvenet_model_copy_mesh(const curvenet_model *model, doubl
   });
 }
 
+curvenet_status_code curvenet_model_face_triangle_ranges(const curvenet_model *model, uint32_t *starts,
+                                                         size_t capacity, size_t *count, curvenet_status *status) {
+  if (!model) return nullArgument("model", status);
+  if (!starts && capacity) return nullArgument("starts", status);
+  return guarded(status, [&] {
+    const std::vector<std::uint32_t> &ranges = model->model.mesh().faceTriangleStart;
+    if (ranges.empty()) return fail(StatusCode::NoMesh, "mesh", "tessellate first", status);
+    if (count) *count = ranges.size();
+    if (!starts) return report({}, status);
+    if (capacity < ranges.size())
+      return fail(StatusCode::BufferTooSmall, "starts",
+                  "holds " + std::to_string(capacity) + ", the mesh needs " + std::to_string(ranges.size()), status);
+    std::copy(ranges.begin(), ranges.end(), starts);
+    return report({}, status);
+  });
+}
+
 curvenet_status_code curvenet_model_write_mesh(const curvenet_model *model, const char *path,
                                                curvenet_status *status) {
   if (!model || !path) return nullArgument(!model ? "model" : "path", status);

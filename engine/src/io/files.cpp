@@ -1,4 +1,5 @@
 // File-level I/O: choosing a reader by extension, atomic writes, mesh writers.
+#include <algorithm>
 #include <atomic>
 #include <bit>
 #include <cctype>
@@ -171,8 +172,12 @@ char *putNumber(char *at, unsigned long x) { return std::to_chars(at, at + 24, x
 void writeObj(const Mesh &mesh, std::ostream &out) {
   checkMesh(mesh);
   const bool hasNormals = !mesh.normals.empty();
+  // Face identity: a group `g faceN` opens the triangles of network face N.
+  const std::vector<std::uint32_t> &faceStart = mesh.faceTriangleStart;
+  const bool grouped = faceStart.size() >= 2 && faceStart.back() == mesh.triangles.size();
   const std::string header = "# curvenet mesh: " + std::to_string(mesh.positions.size()) + " vertices, " +
-                             std::to_string(mesh.triangles.size()) + " triangles\n";
+                             std::to_string(mesh.triangles.size()) + " triangles" +
+                             (grouped ? "; group faceN holds the triangles of network face N" : "") + "\n";
   out.write(header.data(), static_cast<std::streamsize>(header.size()));
   // Lines are formatted by std::to_chars (the shortest text that reads back
   // as the same double) in chunks on all threads, a batch of chunks at a
@@ -189,7 +194,19 @@ void writeObj(const Mesh &mesh, std::ostream &out) {
       for (double x : {p.x, p.y, p.z}) *at++ = ' ', at = putNumber(at, x);
     } else {
       // OBJ indices are 1-based; with normals, each vertex uses its own normal.
-      const auto &t = mesh.triangles[line - vertices - normals];
+      const std::size_t triangle = line - vertices - normals;
+      const auto &t = mesh.triangles[triangle];
+      if (grouped) {
+        // The last face whose range starts at or before this triangle; the
+        // group opens when its range starts here (empty faces have none).
+        const auto next = std::upper_bound(faceStart.begin(), faceStart.end() - 1, triangle);
+        const std::size_t face = static_cast<std::size_t>(next - faceStart.begin()) - 1;
+        if (faceStart[face] == triangle) {
+          for (char c : std::string_view("g face")) *at++ = c;
+          at = putNumber(at, static_cast<unsigned long>(face));
+          *at++ = '\n';
+        }
+      }
       *at++ = 'f';
       for (std::uint32_t v : t) {
         *at++ = ' ', at = putNumber(at, v + 1ul);
@@ -225,10 +242,16 @@ void writePly(const Mesh &mesh, std::ostream &out) {
   data += "property float64 x\nproperty float64 y\nproperty float64 z\n";
   if (hasNormals) data += "property float64 nx\nproperty float64 ny\nproperty float64 nz\n";
   data += "element face " + std::to_string(mesh.triangles.size()) + "\n";
-  data += "property list uchar uint32 vertex_indices\nend_header\n";
+  data += "property list uchar uint32 vertex_indices\n";
+  // Face identity: each triangle's network face, when the mesh records them.
+  const std::vector<std::uint32_t> &faceStart = mesh.faceTriangleStart;
+  const bool grouped = faceStart.size() >= 2 && faceStart.back() == mesh.triangles.size();
+  if (grouped) data += "property uint32 face\n";
+  data += "end_header\n";
 
   const std::size_t vertexBytes = (hasNormals ? 6 : 3) * sizeof(double);
-  data.reserve(data.size() + mesh.positions.size() * vertexBytes + mesh.triangles.size() * (1 + 3 * sizeof(std::uint32_t)));
+  data.reserve(data.size() + mesh.positions.size() * vertexBytes +
+               mesh.triangles.size() * (1 + (grouped ? 4 : 3) * sizeof(std::uint32_t)));
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
     const Vec3 &p = mesh.positions[i];
     putLittleEndian(data, p.x), putLittleEndian(data, p.y), putLittleEndian(data, p.z);
@@ -237,9 +260,13 @@ void writePly(const Mesh &mesh, std::ostream &out) {
       putLittleEndian(data, n.x), putLittleEndian(data, n.y), putLittleEndian(data, n.z);
     }
   }
-  for (const auto &t : mesh.triangles) {
+  std::uint32_t face = 0;
+  for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
     putLittleEndian(data, std::uint8_t{3});
-    for (std::uint32_t v : t) putLittleEndian(data, v);
+    for (std::uint32_t v : mesh.triangles[k]) putLittleEndian(data, v);
+    if (!grouped) continue;
+    while (faceStart[face + 1] <= k) ++face;
+    putLittleEndian(data, face);
   }
   out.write(data.data(), static_cast<std::streamsize>(data.size()));
 }

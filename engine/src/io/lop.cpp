@@ -12,6 +12,7 @@
 // token only for error messages.
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <string>
@@ -57,6 +58,18 @@ std::string lineElement(int line) { return "line " + std::to_string(line); }
 // count cannot ask for gigabytes.
 class LopReader {
 public:
+  /// A token as an error shows it: quoted and cut to 40 characters, or, for
+  /// bytes that are not printable text, the first such byte (a binary file).
+  static std::string shown(std::string_view token) {
+    for (unsigned char c : token)
+      if (c < 0x20 || c >= 0x7f) {
+        char hex[8];
+        std::snprintf(hex, sizeof hex, "0x%02x", c);
+        return std::string("binary data (byte ") + hex + "); a .lop file is text";
+      }
+    return "\"" + std::string(token.substr(0, 40)) + (token.size() > 40 ? "...\"" : "\"");
+  }
+
   LopReader(std::string_view text, const std::string &file) : tokens_(tokenize(text)), file_(file) {
     lastLine_ = tokens_.empty() ? 1 : tokens_.back().line;
   }
@@ -78,9 +91,9 @@ public:
     const Token &t = take(what);
     long long v = 0;
     auto [end, ec] = std::from_chars(t.text.data(), t.text.data() + t.text.size(), v);
-    if (ec == std::errc::result_out_of_range) fail(t.line, what + " is too large: " + std::string(t.text));
+    if (ec == std::errc::result_out_of_range) fail(t.line, what + " is too large: " + shown(t.text));
     if (ec != std::errc() || end != t.text.data() + t.text.size())
-      fail(t.line, "expected " + what + " (an integer), found \"" + std::string(t.text) + "\"");
+      fail(t.line, "expected " + what + " (an integer), found " + shown(t.text));
     if (v < min || v > max)
       fail(t.line, what + " is " + std::to_string(v) + ", outside [" + std::to_string(min) + ", " + std::to_string(max) + "]");
     return v;
@@ -96,7 +109,7 @@ public:
     if (ec == std::errc::result_out_of_range)
       fail(t.line, "number \"" + std::string(t.text) + "\" is outside the range of a double");
     if (ec != std::errc() || end != s.data() + s.size())
-      fail(t.line, "expected a number (" + what + "), found \"" + std::string(t.text) + "\"");
+      fail(t.line, "expected a number (" + what + "), found " + shown(t.text));
     if (!std::isfinite(v)) fail(t.line, "non-finite number \"" + std::string(t.text) + "\" (" + what + ")");
     return v;
   }

@@ -35,6 +35,9 @@ constexpr const char *formatTag = "curvenet-network";
 constexpr int formatVersion = 1;
 // Used as the element of errors about the top-level object itself.
 constexpr const char *documentElement = "document";
+// Deepest nesting of arrays and objects a native document may have (the
+// format itself needs 5; documented in io.hpp).
+constexpr std::size_t kMaxJsonNesting = 64;
 
 std::string indexed(const std::string &path, std::size_t i) { return path + "[" + std::to_string(i) + "]"; }
 std::string member(const std::string &path, std::string_view key) {
@@ -48,21 +51,26 @@ std::string jsonString(std::string_view s) {
 
 // nlohmann keeps the last of duplicated keys without a word. The parser
 // callback sees every key in document order, so a stack of per-object key sets
-// catches duplicates; the stack also knows the JSON path of the current value,
-// which makes the error point at the object holding the duplicate.
+// catches duplicates; the frames' keys and indices spell the JSON path of the
+// current value, which makes the error point at the object holding the
+// duplicate. The path is assembled only for an error, so the cost stays linear
+// in the document whatever its nesting; nesting beyond kMaxJsonNesting (far
+// more than the format uses) is refused as soon as it is reached.
 class DuplicateKeyGuard {
 public:
   explicit DuplicateKeyGuard(const std::string &file) : file_(file) {}
 
   bool operator()(int /*depth*/, Json::parse_event_t event, Json &parsed) {
     switch (event) {
-    case Json::parse_event_t::object_start: stack_.push_back({false, 0, {}, {}, childPath()}); break;
-    case Json::parse_event_t::array_start: stack_.push_back({true, 0, {}, {}, childPath()}); break;
+    case Json::parse_event_t::object_start: open(false); break;
+    case Json::parse_event_t::array_start: open(true); break;
     case Json::parse_event_t::key: {
       Frame &top = stack_.back();
       std::string key = parsed.get<std::string>();
-      if (!top.keys.insert(key).second)
-        throw InputError(file_, top.path.empty() ? documentElement : top.path, "duplicate key " + jsonString(key));
+      if (!top.keys.insert(key).second) {
+        const std::string path = pathOf(stack_.size() - 1);
+        throw InputError(file_, path.empty() ? documentElement : path, "duplicate key " + jsonString(key));
+      }
       top.key = std::move(key);
       break;
     }
@@ -79,15 +87,22 @@ public:
 private:
   struct Frame {
     bool isArray;
-    std::size_t index; // elements completed so far (arrays)
-    std::string key;   // key of the member being parsed (objects)
+    std::size_t index = 0; // elements completed so far (arrays)
+    std::string key;       // key of the member being parsed (objects)
     std::set<std::string> keys;
-    std::string path;
   };
-  std::string childPath() const {
-    if (stack_.empty()) return {};
-    const Frame &top = stack_.back();
-    return top.isArray ? indexed(top.path, top.index) : member(top.path, top.key);
+  void open(bool isArray) {
+    if (stack_.size() >= kMaxJsonNesting)
+      throw InputError(file_, pathOf(3) + "...",
+                       "arrays and objects nested deeper than " + std::to_string(kMaxJsonNesting) + " levels");
+    stack_.push_back({isArray});
+  }
+  /// The JSON path of the value frame `depth` holds (the frames below it name its position).
+  std::string pathOf(std::size_t depth) const {
+    std::string path;
+    for (std::size_t k = 0; k < depth && k < stack_.size(); ++k)
+      path = stack_[k].isArray ? indexed(path, stack_[k].index) : member(path, stack_[k].key);
+    return path;
   }
   void elementDone() {
     if (!stack_.empty() && stack_.back().isArray) ++stack_.back().index;
@@ -201,7 +216,7 @@ public:
   }
 
   std::int64_t integer(const Json &j, const std::string &path, std::int64_t min, std::int64_t max) const {
-    if (!j.is_number_integer()) fail(path, "expected an integer, found " + typeName(j));
+    if (!j.is_number_integer()) fail(path, "expected an integer, found " + shownValue(j));
     if (j.is_number_unsigned() && j.get<std::uint64_t>() > static_cast<std::uint64_t>(max))
       fail(path, "integer " + j.dump() + " is larger than " + std::to_string(max));
     std::int64_t v = j.get<std::int64_t>();
@@ -212,13 +227,23 @@ public:
 
   /// A curve index into a document with `count` curves.
   int index(const Json &j, const std::string &path, std::size_t count) const {
-    if (!j.is_number_integer()) fail(path, "expected an integer curve index, found " + typeName(j));
+    if (!j.is_number_integer()) fail(path, "expected an integer curve index, found " + shownValue(j));
     // Parsed non-negative integers are stored unsigned, negative ones signed.
     bool inRange = j.is_number_unsigned() ? j.get<std::uint64_t>() < count
                                           : j.get<std::int64_t>() >= 0 && static_cast<std::uint64_t>(j.get<std::int64_t>()) < count;
     if (!inRange)
       fail(path, "curve index " + j.dump() + " is out of range (the document has " + std::to_string(count) +
                      (count == 1 ? " curve)" : " curves)"));
+    return static_cast<int>(j.get<std::int64_t>());
+  }
+
+  /// A face index (an edge's master face) into a document with `count` faces.
+  int faceIndex(const Json &j, const std::string &path, std::size_t count) const {
+    if (!j.is_number_integer()) fail(path, "expected an integer face index, found " + shownValue(j));
+    const bool inRange = j.is_number_unsigned() ? j.get<std::uint64_t>() < count : false;
+    if (!inRange)
+      fail(path, "face " + j.dump() + " does not exist (the document has " + std::to_string(count) +
+                     (count == 1 ? " face, numbered 0)" : " faces, numbered from 0)"));
     return static_cast<int>(j.get<std::int64_t>());
   }
 
@@ -247,6 +272,11 @@ public:
   }
 
 private:
+  /// A scalar by its value ("1e+20", "\"x\""), anything else by its type.
+  static std::string shownValue(const Json &j) {
+    if (j.is_primitive()) return j.dump().substr(0, 40);
+    return typeName(j);
+  }
   static std::string typeName(const Json &j) {
     if (j.is_number_float()) return "a non-integer number";
     if (j.is_number()) return "a number";
@@ -369,8 +399,7 @@ std::vector<EdgeDescription> readEdges(const DocumentReader &r, const Json &j, s
     EdgeDescription edge;
     edge.curve = r.index(r.required(j[i], "curve", path), member(path, "curve"), curveCount);
     if (const Json *master = r.optional(j[i], "master"))
-      edge.masterFace = static_cast<int>(r.integer(*master, member(path, "master"), 0,
-                                                   static_cast<std::int64_t>(faceCount) - 1));
+      edge.masterFace = r.faceIndex(*master, member(path, "master"), faceCount);
     if (const Json *connection = r.optional(j[i], "connection"))
       edge.connection = r.boolean(*connection, member(path, "connection"));
     edges.push_back(edge);

@@ -94,7 +94,7 @@ Breakpoints collectBreakpoints(const NetworkDescription &description, const Fail
     const FaceDescription &face = description.faces[f];
     const int n = static_cast<int>(face.sides.size());
     if (n < 2 || n > 8)
-      throw fail("face " + std::to_string(f), std::to_string(n) + " sides; curvenet supports loops of 2 to 8 sides");
+      throw fail("face " + std::to_string(f), std::to_string(n) + (n == 1 ? " side" : " sides") + "; curvenet supports loops of 2 to 8 sides");
     if (!face.holes.empty())
       throw fail("face " + std::to_string(f), "has a hole, but connection curves are switched off (a face with a hole "
                                               "is built only as the composite of the faces they make)");

@@ -127,6 +127,19 @@ std::size_t PatchTables::memory() const {
   return bytes;
 }
 
+namespace {
+
+/// The table of side `side`; a table that cannot be built says which side.
+void addSideTable(PatchTables &tables, int side, int dims, std::vector<double> breaks, const RibbonTable::Exact &exact) {
+  try {
+    tables.sides.emplace_back(dims, std::move(breaks), exact);
+  } catch (const InternalError &e) {
+    throw InternalError("side " + std::to_string(side) + ": " + e.what());
+  }
+}
+
+} // namespace
+
 const PatchTables &Patch::tables() const {
   CURVENET_CHECK(options_.scheme == Scheme::GregoryG1 || options_.scheme == Scheme::GregoryG2 ||
                      options_.scheme == Scheme::CompositeRibbon,
@@ -149,7 +162,7 @@ const PatchTables &Patch::tables() const {
               for (int c = 0; c < 3; ++c) values[k * 9 + f * 3 + c] = v[f][c], slopes[k * 9 + f * 3 + c] = d[f][c];
           }
         };
-        t.sides.emplace_back(9, parabolic_[i].breakpoints(), exact);
+        addSideTable(t, i, 9, parabolic_[i].breakpoints(), exact);
       } else {
         exact = [&ribbon = ribbons_[i]](std::span<const double> at, double *values, double *slopes) {
           std::vector<RibbonJet> jets(at.size());
@@ -161,7 +174,7 @@ const PatchTables &Patch::tables() const {
               for (int c = 0; c < 3; ++c) values[k * 6 + f * 3 + c] = v[f][c], slopes[k * 6 + f * 3 + c] = d[f][c];
           }
         };
-        t.sides.emplace_back(6, ribbons_[i].breakpoints(), exact);
+        addSideTable(t, i, 6, ribbons_[i].breakpoints(), exact);
       }
     }
   });

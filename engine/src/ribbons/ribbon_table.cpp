@@ -19,6 +19,11 @@ constexpr double kSlopeTolerance = 1e-10;
 // Bisection depth below a breakpoint interval: 2⁻¹⁰ of it. Deeper would mean
 // a kink that is not a listed breakpoint; the table then keeps what it has.
 constexpr int kMaxDepth = 10;
+// A kink off the breakpoints leaves an interval or two at the depth limit;
+// more than this many means the exact functions' derivatives disagree with
+// their values (a defect), and building stops with an error rather than a
+// table that quietly misses its tolerance everywhere.
+constexpr std::size_t kMaxUnresolved = 8;
 // Where a quintic Hermite interpolant's error peaks: t³(1 − t)³ at ½, its
 // derivative at ½ − 1/√20.
 constexpr double kValueCheck = 0.5;
@@ -65,6 +70,9 @@ RibbonTable::RibbonTable(int dims, std::vector<double> breaks, const Exact &exac
   std::vector<Accepted> accepted;
   std::vector<double> params, values, slopes;
   double scale = -1;
+  std::size_t unresolved = 0;
+  Interval worstUnresolved{0, 0, 0};
+  double worstValueGap = 0, worstSlopeGap = 0;
   const std::size_t D = static_cast<std::size_t>(dims);
   while (!pending.empty()) {
     params.resize(pending.size() * kPerInterval);
@@ -124,12 +132,22 @@ RibbonTable::RibbonTable(int dims, std::vector<double> breaks, const Exact &exac
         next.push_back({mid, b, depth + 1});
         continue;
       }
+      if (!good) {
+        ++unresolved;
+        if (valueError + slopeError > worstValueGap + worstSlopeGap)
+          worstUnresolved = pending[j], worstValueGap = valueError, worstSlopeGap = slopeError;
+      }
       valueError_ = std::max(valueError_, valueError / scale);
       slopeError_ = std::max(slopeError_, slopeError / scale);
       accepted.push_back({a, b, std::move(c)});
     }
     pending = std::move(next);
   }
+  if (unresolved > kMaxUnresolved)
+    throw InternalError("ribbon table: " + std::to_string(unresolved) + " intervals miss the tolerance at the depth limit (worst on [" +
+                        std::to_string(worstUnresolved.a) + ", " + std::to_string(worstUnresolved.b) + "]: value gap " +
+                        std::to_string(worstValueGap / scale) + ", slope gap " + std::to_string(worstSlopeGap / scale) +
+                        " of the ribbon's size); the exact derivatives disagree with the values");
 
   std::sort(accepted.begin(), accepted.end(), [](const Accepted &x, const Accepted &y) { return x.a < y.a; });
   for (const Accepted &x : accepted) {
