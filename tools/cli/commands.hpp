@@ -26,6 +26,7 @@ Command addDemoCommand(CLI::App &app);
 Command addRenderCommand(CLI::App &app);
 Command addBenchCommand(CLI::App &app);
 Command addApproximateCommand(CLI::App &app);
+Command addFacesCommand(CLI::App &app);
 
 /// The scheme for a --scheme value; InputError listing the known ones otherwise.
 Scheme parseScheme(const std::string &name);

@@ -21,6 +21,7 @@ int main(int argc, char **argv) {
   track(addRenderCommand(app));
   track(addBenchCommand(app));
   track(addApproximateCommand(app));
+  track(addFacesCommand(app));
   track(addListCommand(app));
 
   try {

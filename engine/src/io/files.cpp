@@ -24,6 +24,7 @@
 #include "curvenet/builtins.hpp"
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
+#include "curvenet/sketch.hpp"
 #include "parallel/fork_join.hpp"
 
 namespace curvenet {
@@ -77,8 +78,10 @@ std::string readTextFile(const std::string &path) { return readWholeFile(path); 
 
 NetworkDescription readNetworkFile(const std::string &path) {
   const std::string ext = lowercaseExtension(path);
+  // An OBJ curve graph (a sketch): its network is found (curvenet/sketch.hpp).
+  if (ext == ".obj") return networkFromCurveGraph(readCurveGraphFile(path), {}, path).description;
   if (ext != ".json" && ext != ".lop")
-    throw InputError(path, {}, "unknown network file extension \"" + ext + "\" (expected .json or .lop)");
+    throw InputError(path, {}, "unknown network file extension \"" + ext + "\" (expected .json, .lop or .obj)");
   const std::string text = readWholeFile(path);
   if (ext == ".lop") return parseLop(text, path);
   NetworkDescription d = parseNetworkJson(text, path);
