@@ -16,9 +16,9 @@
 //  3. curves: at each node the edges that continue each other (the pair
 //     closest to a straight line, turning by less than 45°) belong to one
 //     curve, so a curve runs straight through X- and T-nodes. Each curve is a
-//     cubic B-spline fitted by least squares to its points (centripetal
+//     cubic B-spline fitted by least squares to its points (chord-length
 //     parameters, knots at parameter quantiles of the data, a small fairing
-//     term on the second differences of the control points), passing exactly
+//     term on the third differences of the control points), passing exactly
 //     through its nodes; control points are added until the largest distance
 //     from a point to the curve is within the fit tolerance (or no more can
 //     be placed). Where the edges at a node nearly share a plane (no edge
@@ -87,8 +87,9 @@ struct SketchOptions {
   /// Largest distance of a stroke point from its fitted curve, relative to
   /// the diagonal, that the fit aims for.
   double fitTolerance = 2e-3;
-  /// Weight of the fairing term relative to the data term.
-  double fairing = 1e-4;
+  /// Weight of the fairing term (squared third differences of the control
+  /// points) relative to the mean squared data term.
+  double fairing = 1e-6;
 };
 
 enum class NodeKind {

@@ -93,14 +93,15 @@ Solved solve(std::span<const Vec3> data, std::span<const double> parameters, std
       rhs(b.first + r, 2) += b.value[r] * data[i].z;
     }
   }
-  // Fairing: second differences of the control polygon, scaled with the
-  // data so that the weight means the same for any point count.
+  // Fairing: third differences of the control polygon (its change of
+  // turning), scaled with the data so that the weight means the same for any
+  // point count. Unlike second differences they barely pull a circle inwards,
+  // yet they keep many control points from wiggling between the samples.
   const double w = fairing * m;
-  for (int k = 1; k + 1 < n; ++k) {
-    const int idx[3] = {k - 1, k, k + 1};
-    const double coef[3] = {1, -2, 1};
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) normal(idx[r], idx[c]) += w * coef[r] * coef[c];
+  for (int k = 0; k + 3 < n; ++k) {
+    const double coef[4] = {-1, 3, -3, 1};
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) normal(k + r, k + c) += w * coef[r] * coef[c];
   }
   // Constraints, rows over the 3n unknowns.
   std::vector<Eigen::VectorXd> rows;
@@ -164,9 +165,9 @@ Solved solve(std::span<const Vec3> data, std::span<const double> parameters, std
 
 } // namespace
 
-std::vector<double> centripetalParameters(std::span<const Vec3> points) {
+std::vector<double> chordLengthParameters(std::span<const Vec3> points) {
   std::vector<double> t(points.size(), 0.0);
-  for (std::size_t i = 1; i < points.size(); ++i) t[i] = t[i - 1] + std::sqrt(norm(points[i] - points[i - 1]));
+  for (std::size_t i = 1; i < points.size(); ++i) t[i] = t[i - 1] + norm(points[i] - points[i - 1]);
   const double total = t.back();
   for (double &x : t) x = total > 0 ? x / total : 0.0;
   t.back() = 1.0;

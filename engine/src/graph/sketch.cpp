@@ -486,7 +486,7 @@ private:
     }
     nodeAt.push_back(static_cast<int>(points.size()) - 1);
     const bool closed = headNode(edges_, chain.back()) == tailNode(edges_, chain.front()) && continues(chain);
-    const std::vector<double> parameters = centripetalParameters(points);
+    const std::vector<double> parameters = chordLengthParameters(points);
     std::vector<FitNode> fitNodes;
     for (std::size_t k = 0; k < nodeAt.size(); ++k) {
       const int node = k < chain.size() ? tailNode(edges_, chain[k]) : headNode(edges_, chain.back());

@@ -94,12 +94,30 @@ public:
     if (s < 0.1) return a;
     if (s > 0.9) return b;
     const int stroke = strokeOf(a, b);
-    const int m = addPoint(g_.points[a] + (g_.points[b] - g_.points[a]) * s, kind);
+    const int m = addPoint(pointOnStroke(a, b, s), kind);
     unlink(a, b);
     link(a, m, stroke);
     link(m, b, stroke);
     return m;
   }
+  /// The point at parameter s of piece (a, b) on the Catmull–Rom curve
+  /// through the piece and its neighbours: on a smooth stroke it lies on the
+  /// curve the samples come from, not inside it on the chord (the chord's
+  /// sagitta would become a dent at the node that the fit must follow).
+  Vec3 pointOnStroke(int a, int b, double s) const {
+    const Vec3 p1 = g_.points[a], p2 = g_.points[b];
+    const int before = otherNeighbour(a, b), after = otherNeighbour(b, a);
+    if (before < 0 || after < 0) return p1 + (p2 - p1) * s;
+    const Vec3 p0 = g_.points[before], p3 = g_.points[after];
+    const double s2 = s * s, s3 = s2 * s;
+    return (p1 * 2.0 + (p2 - p0) * s + (p0 * 2.0 - p1 * 5.0 + p2 * 4.0 - p3) * s2 + (p1 * 3.0 - p0 - p2 * 3.0 + p3) * s3) * 0.5;
+  }
+  /// The neighbour of `p` other than `not` when p has exactly two, else -1.
+  int otherNeighbour(int p, int not_) const {
+    if (g_.links[p].size() != 2) return -1;
+    return g_.links[p][0].point == not_ ? g_.links[p][1].point : g_.links[p][0].point;
+  }
+
   /// Points reachable from `start` along the polyline within path length `reach`.
   std::unordered_set<int> nearAlongStrokes(int start, double reach) const {
     std::unordered_set<int> seen{start};

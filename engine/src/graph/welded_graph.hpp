@@ -45,8 +45,11 @@ struct FittedStroke {
   double maxError = 0; ///< absolute, point to curve point at its parameter
 };
 
-/// Centripetal parameters on [0, 1] of a polyline.
-std::vector<double> centripetalParameters(std::span<const Vec3> points);
+/// Chord-length parameters on [0, 1] of a polyline. (Centripetal ones, the
+/// square roots of the chords, would put a jump in the parameter speed
+/// wherever a node splits a piece of an evenly sampled stroke in two, which
+/// a cubic can only follow with a wiggle.)
+std::vector<double> chordLengthParameters(std::span<const Vec3> points);
 
 /// Least-squares cubic through `points` at `parameters` with the fairing
 /// weight, meeting every node exactly; control points are added until the
