@@ -11,11 +11,15 @@
 #include <set>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
 #include "curvenet/network.hpp"
 #include "curvenet/sketch.hpp"
 #include "curvenet/surface.hpp"
+#include "cli_support.hpp"
+#include "scratch.hpp"
 
 namespace fs = std::filesystem;
 using namespace curvenet;
@@ -279,4 +283,64 @@ TEST(Sketch, FreeEndsOfIronAndBathtubDangleBelowTheirDistanceToTheStrokes) {
     const Network network = Network::build(r.description, path);
     EXPECT_GT(network.faces().size(), 0u);
   }
+}
+TEST(Sketch, NativeDocumentWithSampledCurvesAndNoFacesIsACurveGraph) {
+  const CurveGraph cube = cubeEdges(0.05);
+  std::string text = "{\"format\": \"curvenet-network\", \"version\": 1, \"curves\": [";
+  for (std::size_t s = 0; s < cube.strokes.size(); ++s) {
+    text += s ? ", {\"samples\": [" : "{\"samples\": [";
+    for (std::size_t k = 0; k < cube.strokes[s].size(); ++k) {
+      const Vec3 p = cube.points[cube.strokes[s][k]];
+      text += (k ? ", [" : "[") + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) + "]";
+    }
+    text += "]}";
+  }
+  text += "]}";
+  test::ScratchDir scratch;
+  const std::string path = (scratch.path() / "cube-strokes.json").string();
+  writeFileAtomically(path, [&](std::ostream &out) { out << text; });
+  const NetworkDescription d = readNetworkFile(path);
+  EXPECT_EQ(d.faces.size(), 6u);
+  EXPECT_EQ(d.name, "cube-strokes");
+  EXPECT_TRUE(watertight(Network::build(d, path)));
+  // A sampled curve with one sample is named by its path.
+  try {
+    parseNetworkJson("{\"format\": \"curvenet-network\", \"version\": 1, \"curves\": [{\"samples\": [[0, 0, 0]]}]}", "one.json");
+    FAIL() << "no error";
+  } catch (const InputError &e) {
+    EXPECT_NE(std::string(e.what()).find("curves[0].samples"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Sketch, FacesCommandWritesTheNetworkAndEveryCommandReadsObjCurveGraphs) {
+  if (std::string(CURVENET_CLI).empty()) GTEST_SKIP() << "the curvenet program is not built";
+  const CurveGraph cube = cubeEdges(0.1);
+  test::ScratchDir scratch;
+  const std::string obj = (scratch.path() / "cube.obj").string(), net = (scratch.path() / "cube.json").string();
+  writeFileAtomically(obj, [&](std::ostream &out) {
+    for (const Vec3 &p : cube.points) out << "v " << p.x << " " << p.y << " " << p.z << "\n";
+    for (const auto &chain : cube.strokes) {
+      out << "l";
+      for (int p : chain) out << " " << p + 1;
+      out << "\n";
+    }
+  });
+  const test::CliRun faces = test::runCli("faces '" + obj + "' -o '" + net + "' --json");
+  ASSERT_EQ(faces.exitCode, 0) << faces.err;
+  const auto summary = nlohmann::json::parse(faces.out);
+  EXPECT_EQ(summary["faces"], 6);
+  EXPECT_EQ(summary["faces_by_sides"]["4"], 6);
+  EXPECT_EQ(summary["nodes_by_valence"]["3"], 8);
+  EXPECT_EQ(summary["euler_characteristic"], 2);
+  EXPECT_EQ(readNetworkFile(net).faces.size(), 6u);
+  const test::CliRun check = test::runCli("check '" + obj + "' --json");
+  ASSERT_EQ(check.exitCode, 0) << check.err;
+  EXPECT_EQ(nlohmann::json::parse(check.out)["patches"], 6);
+  // A mesh OBJ is not a curve graph: named in the error.
+  const std::string mesh = (scratch.path() / "mesh.obj").string();
+  writeFileAtomically(mesh, [](std::ostream &out) { out << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"; });
+  const test::CliRun bad = test::runCli("faces '" + mesh + "' -o '" + net + "'");
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_NE(bad.err.find("mesh.obj"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("line 4"), std::string::npos) << bad.err;
 }

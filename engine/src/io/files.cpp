@@ -87,6 +87,12 @@ NetworkDescription readNetworkFile(const std::string &path) {
   NetworkDescription d = parseNetworkJson(text, path);
   // The name is optional in the document; reports still want one.
   if (d.name.empty()) d.name = std::filesystem::path(path).stem().string();
+  // Curves and no faces: a curve graph, its network found as for a sketch.
+  if (d.faces.empty() && !d.curves.empty()) {
+    const std::string name = d.name;
+    d = networkFromCurveGraph(curveGraphFromCurves(d), {}, path).description;
+    d.name = name;
+  }
   return d;
 }
 
