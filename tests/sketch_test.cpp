@@ -198,6 +198,41 @@ TEST(Sketch, StrokeEndsNearAnotherStrokeBecomeTNodesOrDangleBelowTheWeld) {
   EXPECT_EQ(loose.description.faces.size(), 6u);
 }
 
+TEST(Sketch, CornersOfStrokesSharingAPointAreNodesAndTheOpenSideOfASheetIsLeftOut) {
+  // A square sheet drawn as one closed stroke with four corners, gently
+  // domed, and a stroke across it whose ends stop short of the sides.
+  CurveGraph g;
+  auto dome = [](double x, double y) { return Vec3{x, y, 0.1 * (2 - x * x - y * y)}; };
+  std::vector<int> outline;
+  const double corner[5][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {-1, -1}};
+  for (int side = 0; side < 4; ++side)
+    for (int k = 0; k < 30; ++k) {
+      const double t = k / 30.0;
+      outline.push_back(static_cast<int>(g.points.size()));
+      g.points.push_back(dome(corner[side][0] + (corner[side + 1][0] - corner[side][0]) * t,
+                              corner[side][1] + (corner[side + 1][1] - corner[side][1]) * t));
+    }
+  outline.push_back(outline.front());
+  g.strokes.push_back(outline);
+  const double gap = 1e-3;
+  addStroke(g, 30, [&](double t) { return dome(0.2, -1 + gap + (2 - 2 * gap) * t); });
+  const SketchResult r = networkFromCurveGraph(g);
+  std::multiset<NodeKind> kinds;
+  for (const SketchNode &n : r.nodes) kinds.insert(n.kind);
+  EXPECT_EQ(kinds.count(NodeKind::Corner), 4u);
+  EXPECT_EQ(kinds.count(NodeKind::T), 2u);
+  EXPECT_EQ(r.facesBySides.at(4), 2);
+  EXPECT_EQ(r.description.faces.size(), 2u);
+  ASSERT_EQ(r.openLoops.size(), 1u); // the back of the sheet
+  EXPECT_EQ(r.eulerCharacteristic, 2);
+  const Network network = Network::build(r.description);
+  int boundary = 0;
+  for (const Segment &s : network.segments()) boundary += s.isBoundary() ? 1 : 0;
+  EXPECT_EQ(boundary, 6); // the outline, split at the corners and the T-nodes
+  expectOutward(network, {0.2, 0, -1});
+  EXPECT_EQ(folds(network, Scheme::GregoryG1), 0);
+}
+
 TEST(Sketch, ObjReaderTakesPolylinesAndNamesBadLines) {
   const std::string text = "# a triangle drawn as one closed polyline and a spur\no tri\nv 0 0 0\nv 1 0 0\nvn 0 0 1\n"
                            "v 0 1 0\nl 1 2 3 1\ng spur\nv 2 2 2\nl 3 -1\n";

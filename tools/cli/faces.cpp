@@ -39,6 +39,10 @@ nlohmann::json summaryJson(const SketchResult &r, const SketchOptions &options) 
   nlohmann::json kinds = nlohmann::json::object();
   for (const SketchNode &n : r.nodes) kinds[toString(n.kind)] = kinds.value(toString(n.kind), 0) + 1;
   s["nodes_by_kind"] = kinds;
+  s["nodes"] = nlohmann::json::array();
+  for (const SketchNode &n : r.nodes)
+    s["nodes"].push_back({{"position", {n.position.x, n.position.y, n.position.z}}, {"valence", n.valence},
+                          {"kind", toString(n.kind)}, {"tangent_plane_enforced", n.planeEnforced}});
   s["curves"] = nlohmann::json::array();
   double worst = 0;
   for (const SketchCurve &c : r.curves) {

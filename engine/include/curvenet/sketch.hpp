@@ -9,8 +9,10 @@
 //     polyline splits it there (a T-node); two strokes passing within the
 //     weld distance of each other are joined at their closest points (an
 //     X-node). Points that coincide (1e-9 of the diagonal) are one point.
-//  2. nodes: every point where other than two polyline pieces meet; a closed
-//     stroke with no node gets one. The pieces between nodes are the edges.
+//  2. nodes: every point where other than two polyline pieces meet, and
+//     every corner (a stroke turning by more than 75° over 2% of the diagonal
+//     on either side: strokes drawn to meet at a corner share a point with
+//     only two pieces there); a closed stroke with no node gets one. The pieces between nodes are the edges.
 //     Edges with a free end, and edges on no cycle (bridges), are dangling:
 //     named in the result and left out of the faces.
 //  3. curves: at each node the edges that continue each other (the pair
@@ -97,6 +99,7 @@ enum class NodeKind {
   T,        ///< a stroke end welded onto another stroke's interior
   X,        ///< two strokes crossing within the weld distance
   Loop,     ///< a vertex placed on a closed stroke (or closed edge)
+  Corner,   ///< a stroke turning sharply (more than 75° over 2% of the diagonal)
   FreeEnd,  ///< a stroke end meeting nothing (its edge is dangling)
 };
 const char *toString(NodeKind kind);

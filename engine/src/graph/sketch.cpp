@@ -22,6 +22,7 @@ const char *toString(NodeKind kind) {
   case NodeKind::T: return "T";
   case NodeKind::X: return "X";
   case NodeKind::Loop: return "loop";
+  case NodeKind::Corner: return "corner";
   case NodeKind::FreeEnd: return "free end";
   }
   return "?";
@@ -33,6 +34,8 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 /// Edges at a node that turn by less than this continue each other (one curve).
 constexpr double kStraightTurn = 45 * kPi / 180;
+/// A stroke turning by more than this at a point (over 2% of the diagonal) has a corner there.
+constexpr double kCornerTurn = 75 * kPi / 180;
 /// Edges leaving a node's best plane by less than this share it exactly after the fit.
 constexpr double kPlaneAngle = 25 * kPi / 180;
 
@@ -131,6 +134,61 @@ private:
     edges_.push_back(std::move(e));
   }
 
+  /// The point `reach` along the polyline from `p` through its neighbour
+  /// `next` (or the last one before a node or an end).
+  Vec3 alongFrom(int p, int next, double reach) const {
+    double run = 0;
+    int previous = p, at = next;
+    for (;;) {
+      run += norm(g_.points[at] - g_.points[previous]);
+      if (run >= reach || g_.links[at].size() != 2 || at == p) return g_.points[at];
+      const auto &links = g_.links[at];
+      const int following = links[0].point == previous ? links[1].point : links[0].point;
+      previous = at, at = following;
+    }
+  }
+
+  /// How sharply the polyline turns at a point of two links, seen over
+  /// `reach` on each side (0 for a straight run, π for a hairpin).
+  double turnAt(int p, double reach) const {
+    const Vec3 back = alongFrom(p, g_.links[p][0].point, reach), ahead = alongFrom(p, g_.links[p][1].point, reach);
+    return angleBetween(g_.points[p] - back, ahead - g_.points[p]);
+  }
+
+  /// Points where a stroke turns by more than kCornerTurn over 2% of the
+  /// diagonal on each side, the sharpest within that reach: strokes drawn
+  /// to meet at a corner share a point there with only two links, and the
+  /// corner is a node all the same.
+  std::vector<int> corners() const {
+    const double reach = 0.02 * diagonal_;
+    std::vector<double> turn(g_.points.size(), 0.0);
+    for (int p = 0; p < static_cast<int>(g_.points.size()); ++p)
+      if (g_.links[p].size() == 2) turn[p] = turnAt(p, reach);
+    std::vector<int> out;
+    for (int p = 0; p < static_cast<int>(g_.points.size()); ++p) {
+      if (turn[p] < kCornerTurn) continue;
+      // The sharpest point within the reach along the polyline (ties: the
+      // lowest index), and no node within it: a stroke turning where it
+      // meets others has its corner at that node already.
+      bool sharpest = true;
+      for (const auto &l : g_.links[p]) {
+        double run = 0;
+        int previous = p, at = l.point;
+        while (sharpest && at != p) {
+          run += norm(g_.points[at] - g_.points[previous]);
+          if (run > reach) break;
+          if (g_.links[at].size() != 2 || turn[at] > turn[p] || (turn[at] == turn[p] && at < p)) sharpest = false;
+          if (!sharpest) break;
+          const auto &links = g_.links[at];
+          const int following = links[0].point == previous ? links[1].point : links[0].point;
+          previous = at, at = following;
+        }
+      }
+      if (sharpest) out.push_back(p);
+    }
+    return out;
+  }
+
   void findNodesAndEdges() {
     nodeOfPoint_.assign(g_.points.size(), -1);
     for (int p = 0; p < static_cast<int>(g_.points.size()); ++p) {
@@ -138,6 +196,7 @@ private:
       if (valence == 0 || valence == 2) continue;
       addNode(p, valence == 1 ? NodeKind::FreeEnd : g_.madeAs[p]);
     }
+    for (int p : corners()) addNode(p, NodeKind::Corner);
     std::vector<std::vector<char>> usedLink(g_.points.size());
     for (int p = 0; p < static_cast<int>(g_.points.size()); ++p) usedLink[p].assign(g_.links[p].size(), 0);
     auto walkAllFrom = [&](int point) {
