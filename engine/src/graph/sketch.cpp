@@ -79,7 +79,7 @@ struct Node {
   std::vector<int> halves; ///< half-edges leaving, in rotation order once sorted
   Vec3 normal{0, 0, 0};      ///< oriented; the rotation runs counter-clockwise about it
   Vec3 planeNormal{0, 0, 0}; ///< of the edges' best plane (valence ≥ 3)
-  bool planeKnown = false;   ///< normal from the edges' best plane (valence ≥ 3)
+  bool planeKnown = false;   ///< three or more edges: the tour, its normal and the best plane were measured
   double outOfPlane = kPi;   ///< largest angle of an edge direction out of that plane
   bool faced = false;
 };
@@ -544,7 +544,7 @@ private:
       points.insert(points.end(), q.begin() + 1, q.end());
     }
     nodeAt.push_back(static_cast<int>(points.size()) - 1);
-    const bool closed = headNode(edges_, chain.back()) == tailNode(edges_, chain.front()) && continues(chain);
+    const bool closed = headNode(edges_, chain.back()) == tailNode(edges_, chain.front()) && closesSmoothly(chain);
     const std::vector<double> parameters = chordLengthParameters(points);
     std::vector<FitNode> fitNodes;
     for (std::size_t k = 0; k < nodeAt.size(); ++k) {
@@ -554,8 +554,16 @@ private:
       if (closed && k + 1 == nodeAt.size()) f.planeNormal = {0, 0, 0}; // the closing constraint carries it
       fitNodes.push_back(f);
     }
-    const FittedStroke fit = fitStroke(points, parameters, fitNodes, closed, options_.fitTolerance * diagonal_, options_.fairing);
     const int curve = static_cast<int>(curves_.size());
+    FittedStroke fit;
+    try {
+      fit = fitStroke(points, parameters, fitNodes, closed, options_.fitTolerance * diagonal_, options_.fairing);
+    } catch (const InputError &e) {
+      // Degenerate data (all points of a chain coinciding): say where.
+      throw InputError(file_, "curve " + std::to_string(curve) + " from " + formatPoint(points.front()) + " to " +
+                                  formatPoint(points.back()),
+                       e.reason());
+    }
     curves_.push_back(fit.curve);
     SketchCurve summary;
     summary.pointCount = static_cast<int>(points.size());
@@ -572,16 +580,12 @@ private:
     }
   }
 
-  bool continues(const std::vector<int> &chain) const {
-    // A chain that came back to its start node closes smoothly only when the
-    // node paired its last and first edges (a cycle of the pairing).
-    return chain.size() >= 1 && pairedAtClose_(chain);
-  }
-  bool pairedAtClose_(const std::vector<int> &chain) const {
+  /// A chain that came back to its start node closes smoothly when the
+  /// node continues its last edge into its first (a cycle of the pairing).
+  bool closesSmoothly(const std::vector<int> &chain) const {
     const Node &node = nodes_[tailNode(edges_, chain.front())];
     if (node.kind == NodeKind::Loop) return true;
-    const double turn = angleBetween(direction_[chain.front()], direction_[chain.back() ^ 1] * -1.0);
-    return turn < kStraightTurn;
+    return angleBetween(direction_[chain.front()], direction_[chain.back() ^ 1] * -1.0) < kStraightTurn;
   }
 
   bool enforcesPlane(const Node &node) const { return node.planeKnown && node.outOfPlane < kPlaneAngle; }
