@@ -294,9 +294,10 @@ TEST(Sketch, PublicSketchesCloseIntoWatertightNetworks) {
     for (const SketchCurve &c : r.curves) EXPECT_LE(c.maxError, SketchOptions{}.fitTolerance);
     const Network network = Network::build(r.description, path);
     EXPECT_TRUE(watertight(network));
-    std::printf("%s: %zu nodes, %zu curves, %zu faces, Euler %d, folds gregory-g1 %d composite-ribbon %d gregory-g2 %d\n",
-                e.file, r.nodes.size(), r.curves.size(), r.description.faces.size(), r.eulerCharacteristic,
-                folds(network, Scheme::GregoryG1), folds(network, Scheme::CompositeRibbon), folds(network, Scheme::GregoryG2));
+    // Folds are reported, not asserted: crease nodes (a lid meeting a wall)
+    // have no tangent plane, and gregory-g1 still folds some faces there.
+    std::printf("%s: %zu nodes, %zu curves, %zu faces, Euler %d, gregory-g1 folds %d\n", e.file, r.nodes.size(),
+                r.curves.size(), r.description.faces.size(), r.eulerCharacteristic, folds(network, Scheme::GregoryG1));
   }
 }
 
