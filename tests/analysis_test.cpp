@@ -359,7 +359,7 @@ TEST(BoundedVertexFit, NearXNodeStaysBounded) {
   for (double third : {180.0, 181.0}) {
     SCOPED_TRACE("third direction " + std::to_string(third));
     const std::vector<double> omegas = radians({0, 91, third, 271});
-    const BoundedCurvatureFit fit = fitCurvatureBounded(omegas, ks, {});
+    const BoundedCurvatureFit fit = fitBoundedCurvature(omegas, ks, {});
     EXPECT_LE(largestPrincipal(fit.fit.tensor), 3.1);
     // The X's fit: κ = −2.6 along the 0°–180° line, −0.45 along 91°–271°.
     EXPECT_NEAR(fit.fit.tensor.k2, -2.6, 0.01);
@@ -376,14 +376,14 @@ TEST(BoundedVertexFit, NearXNodeStaysBounded) {
 TEST(BoundedVertexFit, ExactSphereAndSaddleVerticesGiveTheExactTensor) {
   const std::vector<double> omegas = radians({0, 50, 130, 200, 290});
   const std::vector<double> sphere(omegas.size(), 2.0);
-  BoundedCurvatureFit fit = fitCurvatureBounded(omegas, sphere, {});
+  BoundedCurvatureFit fit = fitBoundedCurvature(omegas, sphere, {});
   EXPECT_EQ(fit.regularizedModes, 0);
   EXPECT_NEAR(fit.fit.tensor.k1, 2.0, 1e-13);
   EXPECT_NEAR(fit.fit.tensor.k2, 2.0, 1e-13);
   const CurvatureTensor saddle{1.5, -0.7, 0.3};
   std::vector<double> ks;
   for (double w : omegas) ks.push_back(saddle.normalCurvature(w));
-  fit = fitCurvatureBounded(omegas, ks, {});
+  fit = fitBoundedCurvature(omegas, ks, {});
   EXPECT_EQ(fit.regularizedModes, 0);
   EXPECT_NEAR(fit.fit.tensor.k1, 1.5, 1e-13);
   EXPECT_NEAR(fit.fit.tensor.k2, -0.7, 1e-13);
@@ -411,7 +411,7 @@ TEST(BoundedVertexFit, PrincipalCurvaturesNeverExceedTheCurvesBound) {
       ks.push_back(curvature(rng));
     }
     const double bound = principalCurvatureBound(ks);
-    const BoundedCurvatureFit fit = fitCurvatureBounded(omegas, ks, {});
+    const BoundedCurvatureFit fit = fitBoundedCurvature(omegas, ks, {});
     // Two curves at 15° or more: the paper's n = 2 rule is a choice, kept.
     const bool twoWellApart = n == 2 && std::abs(std::sin(omegas[0] - omegas[1])) >= kNearlyParallelSine;
     if (twoWellApart) continue;

@@ -31,6 +31,7 @@ Command addDemoCommand(CLI::App &app);
 Command addRenderCommand(CLI::App &app);
 Command addBenchCommand(CLI::App &app);
 Command addApproximateCommand(CLI::App &app);
+Command addFacesCommand(CLI::App &app);
 
 /// No upper limit, for wholeNumberIn.
 inline constexpr long kNoLimit = LONG_MAX;

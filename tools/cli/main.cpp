@@ -30,6 +30,7 @@ int main(int argc, char **argv) {
   track(addRenderCommand(app));
   track(addBenchCommand(app));
   track(addApproximateCommand(app));
+  track(addFacesCommand(app));
   track(addListCommand(app));
 
   // CLI11 takes an unknown first word for a stray argument ("A subcommand is

@@ -6,6 +6,10 @@
 //  * .lop loop files: one face, a loop of B-spline curves (first line the
 //    number of curves; per curve: degree; knot count and knots; control-point
 //    count and x y z triples).
+//  * curve graphs: an OBJ with `l` elements and no `f` (a sketch), or a
+//    native document with curves and no faces; readNetworkFile finds their
+//    network (nodes, fitted curves, faces) by networkFromCurveGraph with the
+//    default options (curvenet/sketch.hpp).
 //  * meshes: Wavefront OBJ and binary little-endian PLY, both with normals.
 //  * mesh input (curvenet approximate, render): OBJ (`v` and `f` records;
 //    polygons are fan-triangulated; other records ignored), OFF (ASCII), PLY
@@ -38,7 +42,8 @@ std::string networkToJson(const NetworkDescription &description);
 /// Parses a .lop loop file into a one-face description.
 NetworkDescription parseLop(const std::string &text, const std::string &file = {});
 
-/// Reads a network file, choosing the format by extension (.json, .lop).
+/// Reads a network file, choosing the format by extension (.json, .lop, .obj
+/// curve graphs).
 NetworkDescription readNetworkFile(const std::string &path);
 
 /// Resolves a command-line INPUT: "builtin:NAME" or a file path.

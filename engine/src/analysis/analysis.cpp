@@ -166,7 +166,7 @@ VertexAnalysis analyzeWithFrame(const Network &network, int v, const VertexFrame
   for (int c = 0; c < curves; ++c) curveKappa[c] /= curveEnds[c];
   // Bounded: a near-X or other ill-conditioned fit must not hand the tweak a
   // curvature far beyond what the curves show (vertex_curvature.hpp).
-  const BoundedCurvatureFit bounded = fitCurvatureBounded(curveOmega, curveKappa, fitOptions);
+  const BoundedCurvatureFit bounded = fitBoundedCurvature(curveOmega, curveKappa, fitOptions);
   out.fit = bounded.fit;
   out.regularizedModes = bounded.regularizedModes;
   out.principalDirection1 = std::cos(out.fit.tensor.lambda) * x + std::sin(out.fit.tensor.lambda) * y;

@@ -62,7 +62,7 @@ double principalCurvatureBound(std::span<const double> ks) {
   return std::max(std::abs(*lo), std::abs(*hi)) + 2 * (*hi - *lo);
 }
 
-BoundedCurvatureFit fitCurvatureBounded(std::span<const double> omegas, std::span<const double> ks,
+BoundedCurvatureFit fitBoundedCurvature(std::span<const double> omegas, std::span<const double> ks,
                                         const FitOptions &options) {
   BoundedCurvatureFit out{fitCurvature(omegas, ks, options), 0};
   const double bound = principalCurvatureBound(ks);
@@ -155,7 +155,7 @@ VertexCurvature fitVertexCurvature(const Network &network, const std::vector<Ver
   // builder's continuation angle (1e-4) decides instead.
   FitOptions fitOptions;
   fitOptions.parallelTolerance = 1e-4;
-  const BoundedCurvatureFit bounded = fitCurvatureBounded(omegas, ks, fitOptions);
+  const BoundedCurvatureFit bounded = fitBoundedCurvature(omegas, ks, fitOptions);
   const CurvatureFit &fit = bounded.fit;
   vc.regularizedModes = bounded.regularizedModes;
   vc.tensor = fit.tensor;

@@ -21,7 +21,7 @@ struct VertexCurvature {
   int independentDirections = 0;
   double maxResidual = 0; ///< largest misfit of a curve's normal curvature, 1/length
   /// How many of the three Euler modes the curves left undetermined, taken
-  /// from the curves' mean curvature instead (see fitCurvatureBounded); 0
+  /// from the curves' mean curvature instead (see fitBoundedCurvature); 0
   /// where the paper's fit stands.
   int regularizedModes = 0;
 
@@ -76,11 +76,11 @@ double principalCurvatureBound(std::span<const double> ks);
 /// both principal curvatures are within the bound (all three dropped leave the
 /// umbilic, which always is). Near an X this is the X's own fit (each pair's
 /// mean along its line, no twist).
-BoundedCurvatureFit fitCurvatureBounded(std::span<const double> omegas, std::span<const double> ks,
+BoundedCurvatureFit fitBoundedCurvature(std::span<const double> omegas, std::span<const double> ks,
                                         const FitOptions &options);
 
 /// Fits (κ1, κ2, λ) at every vertex to the normal curvatures P''·N/|P'|² of
-/// the segment ends there, by fitCurvatureBounded (fitCurvature, which picks
+/// the segment ends there, by fitBoundedCurvature (fitCurvature, which picks
 /// the n = 1, 2, 3, > 3 branch, wherever that is well conditioned). The x axis is the first outgoing tangent projected into the plane.
 std::vector<VertexCurvature> fitVertexCurvatures(const Network &network, const std::vector<VertexFrame> &frames);
 /// The same fit at vertex v alone (what fitVertexCurvatures gives for it).

@@ -25,6 +25,7 @@
 #include "curvenet/builtins.hpp"
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
+#include "curvenet/sketch.hpp"
 #include "parallel/fork_join.hpp"
 
 namespace curvenet {
@@ -78,13 +79,21 @@ std::string readTextFile(const std::string &path) { return readWholeFile(path); 
 
 NetworkDescription readNetworkFile(const std::string &path) {
   const std::string ext = lowercaseExtension(path);
+  // An OBJ curve graph (a sketch): its network is found (curvenet/sketch.hpp).
+  if (ext == ".obj") return networkFromCurveGraph(readCurveGraphFile(path), {}, path).description;
   if (ext != ".json" && ext != ".lop")
-    throw InputError(path, {}, "unknown network file extension \"" + ext + "\" (expected .json or .lop)");
+    throw InputError(path, {}, "unknown network file extension \"" + ext + "\" (expected .json, .lop or .obj)");
   const std::string text = readWholeFile(path);
   if (ext == ".lop") return parseLop(text, path);
   NetworkDescription d = parseNetworkJson(text, path);
   // The name is optional in the document; reports still want one.
   if (d.name.empty()) d.name = std::filesystem::path(path).stem().string();
+  // Curves and no faces: a curve graph, its network found as for a sketch.
+  if (d.faces.empty() && !d.curves.empty()) {
+    const std::string name = d.name;
+    d = networkFromCurveGraph(curveGraphFromCurves(d), {}, path).description;
+    d.name = name;
+  }
   return d;
 }
 

@@ -286,8 +286,29 @@ private:
   const std::string &file_;
 };
 
+/// A sampled curve, {"samples": [[x, y, z], ...]}: the polyline through the
+/// samples (degree 1, uniform knots on [0, 1]), a stroke for the sketch stage.
+BSplineCurve readSampledCurve(const DocumentReader &r, const Json &j, const std::string &path) {
+  r.checkKeys(j, path, {"samples"});
+  const Json &samples = r.required(j, "samples", path);
+  const std::string samplesPath = member(path, "samples");
+  r.expectArray(samples, samplesPath);
+  if (samples.size() < 2) r.fail(samplesPath, "a sampled curve needs at least 2 samples, found " + std::to_string(samples.size()));
+  std::vector<Vec3> points;
+  for (std::size_t i = 0; i < samples.size(); ++i) points.push_back(r.vec3(samples[i], indexed(samplesPath, i)));
+  std::vector<double> knots{0.0};
+  for (std::size_t i = 0; i < points.size(); ++i) knots.push_back(static_cast<double>(i) / static_cast<double>(points.size() - 1));
+  knots.push_back(1.0);
+  try {
+    return BSplineCurve(1, std::move(knots), std::move(points));
+  } catch (const InputError &e) {
+    r.fail(path, e.reason());
+  }
+}
+
 BSplineCurve readCurve(const DocumentReader &r, const Json &j, const std::string &path) {
   r.expectObject(j, path);
+  if (j.contains("samples")) return readSampledCurve(r, j, path);
   r.checkKeys(j, path, {"degree", "knots", "points", "weights"});
   // The degree bound is BSplineCurve's; it is checked here too so that the
   // knot-count arithmetic below never sees absurd values.
@@ -455,10 +476,12 @@ NetworkDescription parseNetworkJson(const std::string &text, const std::string &
   d.curves.reserve(curves.size());
   for (std::size_t i = 0; i < curves.size(); ++i) d.curves.push_back(readCurve(r, curves[i], indexed("curves", i)));
 
-  const Json &faces = r.required(doc, "faces", documentElement);
-  r.expectArray(faces, "faces");
-  d.faces.reserve(faces.size());
-  for (std::size_t f = 0; f < faces.size(); ++f) d.faces.push_back(readFace(r, faces[f], indexed("faces", f), d.curves));
+  // No faces: a curve graph, whose faces the sketch stage finds.
+  if (const Json *faces = r.optional(doc, "faces")) {
+    r.expectArray(*faces, "faces");
+    d.faces.reserve(faces->size());
+    for (std::size_t f = 0; f < faces->size(); ++f) d.faces.push_back(readFace(r, (*faces)[f], indexed("faces", f), d.curves));
+  }
 
   if (const Json *reference = r.optional(doc, "reference")) d.reference = readReference(r, *reference, "reference");
   if (const Json *edges = r.optional(doc, "edges")) d.edges = readEdges(r, *edges, d.curves.size(), d.faces.size());

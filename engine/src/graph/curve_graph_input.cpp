@@ -1,0 +1,150 @@
+// Curve graphs from files: OBJ polylines / edge soups, and the curves of a
+// description sampled into strokes.
+#include <cctype>
+#include <filesystem>
+#include <charconv>
+#include <cmath>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "curvenet/error.hpp"
+#include "curvenet/io.hpp"
+#include "curvenet/sketch.hpp"
+
+namespace curvenet {
+inline namespace v1 {
+namespace {
+
+std::vector<std::string_view> tokens(std::string_view line) {
+  std::vector<std::string_view> out;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    std::size_t j = i;
+    while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
+    if (j > i) out.push_back(line.substr(i, j - i));
+    i = j;
+  }
+  return out;
+}
+
+double number(std::string_view token, const std::string &file, const std::string &where) {
+  double value = 0;
+  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  if (ec != std::errc() || end != token.data() + token.size() || !std::isfinite(value))
+    throw InputError(file, where, "not a finite number: \"" + std::string(token) + "\"");
+  return value;
+}
+
+long long integer(std::string_view token, const std::string &file, const std::string &where) {
+  long long value = 0;
+  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  if (ec != std::errc() || end != token.data() + token.size())
+    throw InputError(file, where, "not an integer: \"" + std::string(token) + "\"");
+  return value;
+}
+
+/// Calls visit(lineNumber, tokens) for every non-empty line, comments removed.
+template <typename Visit> void forEachRecord(const std::string &text, Visit &&visit) {
+  std::string_view all(text);
+  std::size_t start = 0, number = 0;
+  while (start < all.size()) {
+    std::size_t end = all.find('\n', start);
+    if (end == std::string_view::npos) end = all.size();
+    std::string_view line = all.substr(start, end - start);
+    ++number;
+    if (auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+    if (const auto t = tokens(line); !t.empty()) visit(number, t);
+    start = end + 1;
+  }
+}
+
+} // namespace
+
+bool objIsCurveGraph(const std::string &text) {
+  bool lines = false, faces = false;
+  forEachRecord(text, [&](std::size_t, const std::vector<std::string_view> &t) {
+    lines = lines || t[0] == "l";
+    faces = faces || t[0] == "f";
+  });
+  return lines && !faces;
+}
+
+CurveGraph parseObjCurveGraph(const std::string &text, const std::string &file) {
+  CurveGraph graph;
+  struct PendingStroke {
+    std::vector<long long> indices;
+    std::size_t line;
+  };
+  std::vector<PendingStroke> pending;
+  forEachRecord(text, [&](std::size_t line, const std::vector<std::string_view> &t) {
+    const std::string where = "line " + std::to_string(line);
+    if (t[0] == "v") {
+      if (t.size() < 4) throw InputError(file, where, "a vertex needs x y z");
+      graph.points.push_back({number(t[1], file, where), number(t[2], file, where), number(t[3], file, where)});
+    } else if (t[0] == "l") {
+      if (t.size() < 3) throw InputError(file, where, "a line element needs at least 2 points");
+      PendingStroke stroke{{}, line};
+      // "i" or "i/t"; negative indices count back from the last vertex read.
+      for (std::size_t k = 1; k < t.size(); ++k) {
+        const long long index = integer(t[k].substr(0, t[k].find('/')), file, where);
+        if (index == 0) throw InputError(file, where, "OBJ indices start at 1");
+        stroke.indices.push_back(index < 0 ? static_cast<long long>(graph.points.size()) + index : index - 1);
+      }
+      pending.push_back(std::move(stroke));
+    } else if (t[0] == "f") {
+      throw InputError(file, where, "a face record in a curve graph (an OBJ with faces is a triangle mesh)");
+    }
+    // vn, vt, o, g, s, usemtl, mtllib: nothing the graph uses.
+  });
+  for (const PendingStroke &stroke : pending) {
+    std::vector<int> chain;
+    for (long long index : stroke.indices) {
+      if (index < 0 || index >= static_cast<long long>(graph.points.size()))
+        throw InputError(file, "line " + std::to_string(stroke.line),
+                         "vertex index " + std::to_string(index + 1) + " out of range (" +
+                             std::to_string(graph.points.size()) + " vertices)");
+      chain.push_back(static_cast<int>(index));
+    }
+    graph.strokes.push_back(std::move(chain));
+    graph.strokeNames.push_back("line " + std::to_string(stroke.line));
+  }
+  if (graph.strokes.empty()) throw InputError(file, {}, "no line elements: not a curve graph");
+  return graph;
+}
+
+CurveGraph curveGraphFromCurves(const NetworkDescription &description, int samples) {
+  CurveGraph graph;
+  graph.name = description.name;
+  for (std::size_t c = 0; c < description.curves.size(); ++c) {
+    const BSplineCurve &curve = description.curves[c];
+    std::vector<int> chain;
+    if (curve.degree() == 1 && !curve.isRational()) {
+      // A polyline: its corners are the samples, fitted afresh (a degree-1
+      // curve would render as shards).
+      for (const Vec3 &p : curve.controlPoints()) {
+        chain.push_back(static_cast<int>(graph.points.size()));
+        graph.points.push_back(p);
+      }
+    } else {
+      const double a = curve.domainStart(), b = curve.domainEnd();
+      for (int k = 0; k < samples; ++k) {
+        chain.push_back(static_cast<int>(graph.points.size()));
+        graph.points.push_back(curve.point(a + (b - a) * k / (samples - 1)));
+      }
+    }
+    graph.strokes.push_back(std::move(chain));
+    graph.strokeNames.push_back("curve " + std::to_string(c));
+  }
+  return graph;
+}
+
+CurveGraph readCurveGraphFile(const std::string &path) {
+  CurveGraph graph = parseObjCurveGraph(readTextFile(path), path);
+  graph.name = std::filesystem::path(path).stem().string();
+  return graph;
+}
+
+} // namespace v1
+} // namespace curvenet

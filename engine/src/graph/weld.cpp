@@ -1,0 +1,284 @@
+// Welding a curve graph (sketch.hpp step 1): coincident points, T-nodes
+// where a free end lies on another stroke, X-nodes where strokes cross.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <queue>
+#include <unordered_map>
+#include <unordered_set>
+#include <utility>
+
+#include "graph/welded_graph.hpp"
+
+namespace curvenet {
+inline namespace v1 {
+namespace graph {
+namespace {
+
+/// Points hashed into cubic cells, for neighbour queries within a radius.
+class PointGrid {
+public:
+  explicit PointGrid(double cell) : cell_(cell) {}
+  void add(const Vec3 &p, int id) { cells_[key(cellOf(p))].push_back(id); }
+  /// Calls visit(id) for every id whose point was added within one cell of p.
+  template <typename Visit> void near(const Vec3 &p, Visit &&visit) const {
+    const auto c = cellOf(p);
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz)
+          if (auto it = cells_.find(key({c[0] + dx, c[1] + dy, c[2] + dz})); it != cells_.end())
+            for (int id : it->second) visit(id);
+  }
+
+private:
+  std::array<std::int64_t, 3> cellOf(const Vec3 &p) const {
+    return {static_cast<std::int64_t>(std::floor(p.x / cell_)), static_cast<std::int64_t>(std::floor(p.y / cell_)),
+            static_cast<std::int64_t>(std::floor(p.z / cell_))};
+  }
+  static std::uint64_t key(const std::array<std::int64_t, 3> &c) {
+    return static_cast<std::uint64_t>(c[0]) * 73856093u ^ static_cast<std::uint64_t>(c[1]) * 19349663u ^
+           static_cast<std::uint64_t>(c[2]) * 83492791u;
+  }
+  double cell_;
+  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+};
+
+/// Closest points of segments [a0, a1] and [b0, b1]: parameters (s, t).
+std::pair<double, double> closestParameters(const Vec3 &a0, const Vec3 &a1, const Vec3 &b0, const Vec3 &b1) {
+  const Vec3 u = a1 - a0, v = b1 - b0, w = a0 - b0;
+  const double a = dot(u, u), b = dot(u, v), c = dot(v, v), d = dot(u, w), e = dot(v, w);
+  const double det = a * c - b * b;
+  double s = det > 1e-14 * a * c ? std::clamp((b * e - c * d) / det, 0.0, 1.0) : 0.0;
+  double t = c > 0 ? std::clamp((b * s + e) / c, 0.0, 1.0) : 0.0;
+  s = a > 0 ? std::clamp((b * t - d) / a, 0.0, 1.0) : 0.0;
+  return {s, t};
+}
+
+class Welder {
+public:
+  Welder(WeldedGraph &g, double weld) : g_(g), weld_(weld) {}
+
+  void link(int a, int b, int stroke) {
+    if (a == b) return;
+    for (const auto &l : g_.links[a])
+      if (l.point == b) return; // a piece given twice is one piece
+    g_.links[a].push_back({b, stroke});
+    g_.links[b].push_back({a, stroke});
+  }
+  void unlink(int a, int b) {
+    std::erase_if(g_.links[a], [&](const WeldedGraph::Link &l) { return l.point == b; });
+    std::erase_if(g_.links[b], [&](const WeldedGraph::Link &l) { return l.point == a; });
+  }
+  int strokeOf(int a, int b) const {
+    for (const auto &l : g_.links[a])
+      if (l.point == b) return l.stroke;
+    return -1;
+  }
+  int addPoint(const Vec3 &p, NodeKind kind) {
+    g_.points.push_back(p);
+    g_.links.emplace_back();
+    g_.madeAs.push_back(kind);
+    return static_cast<int>(g_.points.size()) - 1;
+  }
+  /// Moves every link of `from` onto `to`.
+  void merge(int from, int to) {
+    const auto old = g_.links[from];
+    for (const auto &l : old) {
+      unlink(from, l.point);
+      link(to, l.point, l.stroke);
+    }
+  }
+  /// Splits piece (a, b) at parameter s; returns the point there (an end
+  /// when s is within a tenth of the piece of it).
+  int split(int a, int b, double s, NodeKind kind) {
+    if (s < 0.1) return a;
+    if (s > 0.9) return b;
+    const int stroke = strokeOf(a, b);
+    const int m = addPoint(pointOnStroke(a, b, s), kind);
+    unlink(a, b);
+    link(a, m, stroke);
+    link(m, b, stroke);
+    return m;
+  }
+  /// The point at parameter s of piece (a, b) on the Catmull–Rom curve
+  /// through the piece and its neighbours: on a smooth stroke it lies on the
+  /// curve the samples come from, not inside it on the chord (the chord's
+  /// sagitta would become a dent at the node that the fit must follow).
+  Vec3 pointOnStroke(int a, int b, double s) const {
+    const Vec3 p1 = g_.points[a], p2 = g_.points[b];
+    const int before = otherNeighbour(a, b), after = otherNeighbour(b, a);
+    if (before < 0 || after < 0) return p1 + (p2 - p1) * s;
+    const Vec3 p0 = g_.points[before], p3 = g_.points[after];
+    const double s2 = s * s, s3 = s2 * s;
+    return (p1 * 2.0 + (p2 - p0) * s + (p0 * 2.0 - p1 * 5.0 + p2 * 4.0 - p3) * s2 + (p1 * 3.0 - p0 - p2 * 3.0 + p3) * s3) * 0.5;
+  }
+  /// The neighbour of `p` other than `not` when p has exactly two, else -1.
+  int otherNeighbour(int p, int not_) const {
+    if (g_.links[p].size() != 2) return -1;
+    return g_.links[p][0].point == not_ ? g_.links[p][1].point : g_.links[p][0].point;
+  }
+
+  /// Points reachable from `start` along the polyline within path length `reach`.
+  std::unordered_set<int> nearAlongStrokes(int start, double reach) const {
+    std::unordered_set<int> seen{start};
+    std::queue<std::pair<int, double>> queue;
+    queue.push({start, 0.0});
+    while (!queue.empty()) {
+      auto [p, d] = queue.front();
+      queue.pop();
+      for (const auto &l : g_.links[p]) {
+        const double next = d + norm(g_.points[l.point] - g_.points[p]);
+        if (next <= reach && seen.insert(l.point).second) queue.push({l.point, next});
+      }
+    }
+    // The neighbours themselves are always "along": their piece is the end's own.
+    for (const auto &l : g_.links[start]) seen.insert(l.point);
+    return seen;
+  }
+  std::vector<std::pair<int, int>> pieces() const {
+    std::vector<std::pair<int, int>> out;
+    for (int a = 0; a < static_cast<int>(g_.links.size()); ++a)
+      for (const auto &l : g_.links[a])
+        if (a < l.point) out.push_back({a, l.point});
+    return out;
+  }
+  double longestPiece() const {
+    double longest = 0;
+    for (auto [a, b] : pieces()) longest = std::max(longest, norm(g_.points[a] - g_.points[b]));
+    return longest;
+  }
+
+  /// A free end (one link) within the weld distance of another stroke's
+  /// point is merged into it; else, within it of a piece, the piece is split
+  /// there (a T-node).
+  void joinFreeEnds() {
+    const double cell = std::max(longestPiece(), weld_) + weld_;
+    PointGrid grid(cell);
+    for (int p = 0; p < static_cast<int>(g_.points.size()); ++p) grid.add(g_.points[p], p);
+    const int originalPoints = static_cast<int>(g_.points.size());
+    for (int end = 0; end < originalPoints; ++end) {
+      if (g_.links[end].size() != 1) continue;
+      const Vec3 at = g_.points[end];
+      const auto own = nearAlongStrokes(end, 3 * weld_);
+      int bestPoint = -1;
+      double bestPointDistance = weld_;
+      int bestA = -1, bestB = -1;
+      double bestS = 0, bestPieceDistance = weld_;
+      grid.near(at, [&](int q) {
+        if (own.count(q) || g_.links[q].empty()) return;
+        if (const double d = norm(g_.points[q] - at); d <= bestPointDistance) bestPointDistance = d, bestPoint = q;
+        for (const auto &l : g_.links[q]) {
+          if (own.count(l.point)) continue;
+          const Vec3 a = g_.points[q], b = g_.points[l.point];
+          const double len2 = squaredNorm(b - a);
+          const double s = len2 > 0 ? std::clamp(dot(at - a, b - a) / len2, 0.0, 1.0) : 0.0;
+          if (const double d = norm(a + (b - a) * s - at); d < bestPieceDistance)
+            bestPieceDistance = d, bestA = q, bestB = l.point, bestS = s;
+        }
+      });
+      int target = bestPoint;
+      if (target < 0 && bestA >= 0) {
+        target = split(bestA, bestB, bestS, NodeKind::T);
+        if (target >= originalPoints) grid.add(g_.points[target], target);
+      }
+      if (target < 0) continue;
+      if (g_.madeAs[target] == NodeKind::Junction) g_.madeAs[target] = NodeKind::T;
+      merge(end, target);
+      ++g_.tNodes;
+    }
+  }
+
+  /// Pieces of strokes that pass within the weld distance of each other
+  /// without sharing a point nearby are joined at their closest points.
+  void joinCrossings() {
+    const auto all = pieces();
+    const double cell = std::max(longestPiece(), weld_) + weld_;
+    PointGrid grid(cell);
+    for (int k = 0; k < static_cast<int>(all.size()); ++k)
+      grid.add((g_.points[all[k].first] + g_.points[all[k].second]) * 0.5, k);
+    struct Candidate {
+      double distance;
+      int first, second;
+      double s, t;
+    };
+    std::vector<Candidate> candidates;
+    for (int k = 0; k < static_cast<int>(all.size()); ++k) {
+      const auto [a0, a1] = all[k];
+      grid.near((g_.points[a0] + g_.points[a1]) * 0.5, [&](int j) {
+        if (j <= k) return;
+        const auto [b0, b1] = all[j];
+        if (a0 == b0 || a0 == b1 || a1 == b0 || a1 == b1) return;
+        const auto [s, t] = closestParameters(g_.points[a0], g_.points[a1], g_.points[b0], g_.points[b1]);
+        const Vec3 pa = g_.points[a0] + (g_.points[a1] - g_.points[a0]) * s;
+        const Vec3 pb = g_.points[b0] + (g_.points[b1] - g_.points[b0]) * t;
+        if (const double d = norm(pa - pb); d < weld_) candidates.push_back({d, k, j, s, t});
+      });
+    }
+    std::sort(candidates.begin(), candidates.end(),
+              [](const Candidate &x, const Candidate &y) { return x.distance < y.distance; });
+    std::vector<bool> used(all.size(), false);
+    for (const Candidate &c : candidates) {
+      if (used[c.first] || used[c.second]) continue;
+      const auto [a0, a1] = all[c.first];
+      const auto [b0, b1] = all[c.second];
+      // Pieces already joined nearby (a shared point within reach) are not a crossing.
+      const auto own = nearAlongStrokes(a0, 3 * weld_ + norm(g_.points[a1] - g_.points[a0]));
+      if (own.count(b0) || own.count(b1)) continue;
+      used[c.first] = used[c.second] = true;
+      const int pa = split(a0, a1, c.s, NodeKind::X);
+      const int pb = split(b0, b1, c.t, NodeKind::X);
+      if (pa == pb) continue;
+      const Vec3 middle = (g_.points[pa] + g_.points[pb]) * 0.5;
+      g_.points[pa] = middle;
+      g_.madeAs[pa] = NodeKind::X;
+      merge(pb, pa);
+      ++g_.xNodes;
+    }
+  }
+
+private:
+  WeldedGraph &g_;
+  double weld_;
+};
+
+} // namespace
+
+WeldedGraph weldCurveGraph(const CurveGraph &input, double weld, double diagonal) {
+  WeldedGraph g;
+  // Coincident points (a curve's end sampled twice, a stroke given per
+  // segment with its own copies) are one point.
+  const double same = 1e-9 * diagonal;
+  std::vector<int> representative(input.points.size(), -1);
+  {
+    PointGrid grid(std::max(same, 1e-300) * 4);
+    for (int p = 0; p < static_cast<int>(input.points.size()); ++p) {
+      int found = -1;
+      grid.near(input.points[p], [&](int q) {
+        if (found < 0 && norm(g.points[q] - input.points[p]) <= same) found = q;
+      });
+      if (found < 0) {
+        found = static_cast<int>(g.points.size());
+        g.points.push_back(input.points[p]);
+        grid.add(input.points[p], found);
+      }
+      representative[p] = found;
+    }
+  }
+  g.links.resize(g.points.size());
+  g.madeAs.assign(g.points.size(), NodeKind::Junction);
+  Welder welder(g, weld);
+  for (int s = 0; s < static_cast<int>(input.strokes.size()); ++s) {
+    const auto &chain = input.strokes[s];
+    for (std::size_t k = 0; k + 1 < chain.size(); ++k)
+      welder.link(representative[chain[k]], representative[chain[k + 1]], s);
+  }
+  if (weld > 0) {
+    welder.joinFreeEnds();
+    welder.joinCrossings();
+  }
+  return g;
+}
+
+} // namespace graph
+} // namespace v1
+} // namespace curvenet
