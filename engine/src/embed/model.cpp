@@ -420,8 +420,13 @@ Result<SurfacePoint> Model::evaluate(int face, const Vec2 &uv) const {
 Status Model::evaluate(int face, std::span<const Vec2> uv, std::span<SurfacePoint> out,
                        const BatchOptions &options) const {
   return guarded<Status>([&] {
-    return impl_->batch(face, uv, out, options,
-                        [face](const Surface &s, const Vec2 &p) { return s.evaluate(face, p); });
+    return impl_->batchRanges(
+        face, uv, out, options,
+        [&](const Surface &surface, const DomainPolygon &, std::size_t begin, std::size_t end) {
+          // Outside points are evaluated too (finite or not, never a fault)
+          // and set to NaN by batchRanges.
+          surface.evaluate(face, uv.subspan(begin, end - begin), out.subspan(begin, end - begin));
+        });
   });
 }
 
