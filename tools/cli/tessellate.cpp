@@ -1,5 +1,8 @@
 // curvenet tessellate INPUT -o FILE.{obj,ply} [--scheme S] [--masters M] [--resolution R] [--threads T]
+//                    [--tolerance T [--angle DEG]] [--json]
 // and curvenet demo [--out DIR]: the default network's mesh and report.
+#include <nlohmann/json.hpp>
+
 #include <cstdio>
 #include <filesystem>
 
@@ -19,32 +22,72 @@ Command addTessellateCommand(CLI::App &app) {
   struct Options {
     std::string input, output, scheme = "gregory-g1", masters = "rebuilt", controlNets;
     int resolution = 16, threads = 0;
-    bool quiet = false;
+    double tolerance = 0, angle = 0;
+    bool quiet = false, json = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App *sub = app.add_subcommand("tessellate", "Tessellate every face into one watertight mesh");
   sub->add_option("INPUT", o->input, "network file (.json, .lop) or builtin:NAME")->required();
-  sub->add_option("-o,--output", o->output, "output mesh (.obj or .ply)")->required();
+  sub->add_option("-o,--output", o->output, "output mesh (.obj or .ply); required unless --json");
   sub->add_option("--scheme", o->scheme, "gregory-g1 | composite-ribbon | bezier-g1 | coons-c0");
   addMastersOption(sub, o->masters);
   sub->add_option("--control-nets", o->controlNets, "also write the quintic control nets as JSON (bezier-g1, coons-c0)");
   sub->add_option("--resolution", o->resolution, "intervals per segment")->check(CLI::Range(1, 4096));
   sub->add_option("--threads", o->threads, "worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  sub->add_option("--tolerance", o->tolerance,
+                  "chordal tolerance relative to the diagonal: each face and segment gets its own resolution")
+      ->check(CLI::Range(0.0, 1.0));
+  sub->add_option("--angle", o->angle, "with --tolerance: largest angle between an edge's end normals, degrees")
+      ->check(CLI::Range(0.0, 90.0));
+  sub->add_flag("--json", o->json, "print the mesh sizes and the measured deviation as one JSON object");
   addQuietFlag(sub, o->quiet);
   return {sub, [o] {
             const SurfaceOptions options = parseSurfaceOptions(o->scheme, o->masters);
             const Scheme scheme = options.scheme;
             if (!o->controlNets.empty() && scheme != Scheme::BezierG1 && scheme != Scheme::CoonsC0)
               throw InputError("", "--control-nets", "needs --scheme bezier-g1 or coons-c0");
+            if (o->output.empty() && !o->json) throw InputError("", "-o/--output", "is required (or give --json)");
+            if (o->angle > 0 && !(o->tolerance > 0)) throw InputError("", "--angle", "needs --tolerance");
             const Network network = Network::build(loadNetworkInput(o->input), o->input);
             const Surface surface = Surface::build(network, options);
             warnAboutFolds(surface);
-            refuseIfTooLarge(estimateMeshBytes(estimateMeshVertices(surface, o->resolution), true),
-                             "--resolution " + std::to_string(o->resolution));
-            const Mesh mesh = tessellateShowingProgress(surface, {o->resolution, o->threads}, "tessellate",
-                                                        progressWanted(o->quiet));
-            writeMeshFile(mesh, o->output);
+            TessellationOptions tessellation{o->resolution, o->threads};
+            tessellation.tolerance = o->tolerance, tessellation.angle = o->angle;
+            if (!(o->tolerance > 0))
+              refuseIfTooLarge(estimateMeshBytes(estimateMeshVertices(surface, o->resolution), true),
+                               "--resolution " + std::to_string(o->resolution));
+            TessellationReport report;
+            const Mesh mesh = o->tolerance > 0 || o->json ? tessellate(surface, tessellation, report)
+                                                          : tessellateShowingProgress(surface, tessellation, "tessellate",
+                                                                                      progressWanted(o->quiet));
+            if (!o->output.empty()) writeMeshFile(mesh, o->output);
             if (!o->controlNets.empty()) writeControlNets(surface, o->controlNets);
+            if (o->json) {
+              nlohmann::json out = {{"input", o->input},
+                                    {"scheme", o->scheme},
+                                    {"vertices", mesh.positions.size()},
+                                    {"triangles", mesh.triangles.size()},
+                                    {"deviation", report.deviation},
+                                    {"max_normal_angle_deg", report.angle},
+                                    {"min_resolution", report.minResolution},
+                                    {"max_resolution", report.maxResolution},
+                                    {"passes", report.passes},
+                                    {"uniform_resolution", report.uniformResolution},
+                                    {"uniform_triangles", report.uniformTriangles}};
+              if (o->tolerance > 0) out["tolerance"] = o->tolerance;
+              if (o->angle > 0) out["angle_deg"] = o->angle;
+              if (!o->output.empty()) out["output"] = o->output;
+              std::printf("%s\n", out.dump(2).c_str());
+              return 0;
+            }
+            if (o->tolerance > 0) {
+              std::printf("%s: %zu vertices, %zu triangles (%s, tolerance %g: face resolutions %d-%d, measured "
+                          "deviation %.3g, normal angle %.3g deg; uniform resolution %d would need %zu triangles)\n",
+                          o->output.c_str(), mesh.positions.size(), mesh.triangles.size(), o->scheme.c_str(),
+                          o->tolerance, report.minResolution, report.maxResolution, report.deviation, report.angle,
+                          report.uniformResolution, report.uniformTriangles);
+              return 0;
+            }
             std::printf("%s: %zu vertices, %zu triangles (%s, resolution %d)\n", o->output.c_str(),
                         mesh.positions.size(), mesh.triangles.size(), o->scheme.c_str(), o->resolution);
             return 0;
