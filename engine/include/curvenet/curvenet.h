@@ -256,6 +256,17 @@ curvenet_status_code curvenet_model_tessellate(curvenet_model *model, int face, 
                                                size_t *vertex_count, size_t *triangle_count,
                                                curvenet_status *status);
 
+/* As curvenet_model_tessellate, but to a chordal `tolerance` relative to the
+ * network's diagonal, in (0, 1), and, when `angle_deg` > 0, with the normals
+ * at the two ends of every mesh edge within angle_deg degrees: each face and
+ * segment gets its own resolution, chosen by measuring the mesh against the
+ * exact surface; watertight where neighbouring faces differ (TessellationOptions
+ * in curvenet/tessellate.hpp). The model must have one option set for every
+ * face (CURVENET_INVALID_ARGUMENT otherwise). */
+curvenet_status_code curvenet_model_tessellate_to_tolerance(curvenet_model *model, int face, double tolerance,
+                                                            double angle_deg, int threads, size_t *vertex_count,
+                                                            size_t *triangle_count, curvenet_status *status);
+
 /* Copies the kept mesh: positions and normals as x y z triples (capacities
  * in vertices), triangles as three vertex indices each, counter-clockwise
  * seen from the normal side (capacity in triangles). `normals` NULL (or a

@@ -305,6 +305,10 @@ public:
   /// call at that resolution costs a copy; otherwise an edit drops it.
   /// A resolution whose mesh would not fit in the memory available is
   /// refused up front (OutOfMemory, with the estimate); the kept mesh stays.
+  /// With options.tolerance (tessellate.hpp: each face and segment its own
+  /// resolution, chosen by measurement) the model must have one option set
+  /// (surfaceCount() == 1; InvalidArgument otherwise), the result is cached
+  /// per tolerance and angle, and an edit drops it instead of updating it.
   Result<MeshSize> tessellate(const TessellationOptions &options = {}, int face = allFaces);
 
   /// The kept mesh (library-owned; empty before any tessellate and after an

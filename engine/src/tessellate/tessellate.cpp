@@ -603,6 +603,44 @@ Mesh tessellateToTolerance(const Surface &surface, const TessellationOptions &op
     }
     if (!changed || passes == kMaxPasses) break;
   }
+  // Trimming: a face that meets the limits with room to spare tries one
+  // resolution less where the same laws predict it still meets them; the
+  // faces that then miss go back (their segments with them: a finer
+  // segment only brings the neighbours' boundary rows closer).
+  auto predictedToMeet = [&](int f, int coarser) {
+    const double ratio = static_cast<double>(resolution[f]) / coarser;
+    return accuracy.deviation[f] * ratio * ratio <= target &&
+           (angleLimit == 0 || accuracy.angle[f] * ratio <= angleLimit);
+  };
+  for (int trim = 0; trim < 2 && passes < kMaxPasses + 2; ++trim) {
+    const bool met = std::all_of(accuracy.deviation.begin(), accuracy.deviation.end(),
+                                 [&](double d) { return d <= target; });
+    if (!met) break;
+    std::vector<int> trimmed = resolution;
+    for (int f = 0; f < faces; ++f)
+      if (resolution[f] > 1 && predictedToMeet(f, resolution[f] - 1)) trimmed[f] = resolution[f] - 1;
+    if (trimmed == resolution) break;
+    Mesh candidate;
+    std::vector<std::array<Vec2, 3>> candidateDomains;
+    const Layout layout = makeLayout(surface, trimmed, segmentIntervalsFor(surface, trimmed));
+    tessellateInto(surface, pass, layout, nullptr, candidate, &candidateDomains);
+    FaceAccuracy candidateAccuracy = measureAccuracy(surface, candidate, candidateDomains);
+    ++passes;
+    bool reverted = false;
+    for (int f = 0; f < faces; ++f)
+      if (candidateAccuracy.deviation[f] > target || (angleLimit > 0 && candidateAccuracy.angle[f] > angleLimit))
+        trimmed[f] = resolution[f], reverted = true;
+    resolution = trimmed;
+    if (!reverted) {
+      mesh = std::move(candidate), domains = std::move(candidateDomains), accuracy = std::move(candidateAccuracy);
+      continue;
+    }
+    // The accepted resolutions, tessellated and measured once more.
+    const Layout accepted = makeLayout(surface, resolution, segmentIntervalsFor(surface, resolution));
+    tessellateInto(surface, pass, accepted, nullptr, mesh, &domains);
+    accuracy = measureAccuracy(surface, mesh, domains);
+    ++passes;
+  }
   if (report) {
     TessellationReport &r = *report;
     r = {};
