@@ -361,16 +361,31 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
             if (wanted(f)) boundary.push_back({p.id, f, p.domain}); // else owned by a face kept as it was
           }
   }
-  // A few microseconds a point (G²: two sweeps per point end on a side).
-  constexpr std::size_t kBoundaryGrain = 64;
-  parallel::parallelFor(tbb::blocked_range<std::size_t>(0, boundary.size(), kBoundaryGrain),
-                        [&](const tbb::blocked_range<std::size_t> &range) {
-                          for (std::size_t k = range.begin(); k < range.end(); ++k) {
-                            const BoundaryNormal &b = boundary[k];
-                            mesh.normals[b.id] = surface.evaluate(b.face, b.domain).normal;
-                            if (record) mesh.domainPoints[b.id] = {b.face, b.domain};
-                          }
-                        });
+  // Batches of one face's boundary points (`boundary` lists them face by
+  // face) through the batched evaluation: a point's normal depends only on
+  // its face's run and its place in it, never on the threads, and a
+  // re-tessellation sees the same runs.
+  constexpr std::size_t kBoundaryBatch = 1024;
+  std::vector<std::pair<std::size_t, std::size_t>> batches;
+  for (std::size_t begin = 0; begin < boundary.size();) {
+    std::size_t end = begin;
+    while (end < boundary.size() && end - begin < kBoundaryBatch && boundary[end].face == boundary[begin].face) ++end;
+    batches.push_back({begin, end});
+    begin = end;
+  }
+  parallel::parallelFor(std::size_t{0}, batches.size(), [&](std::size_t item) {
+    const auto [begin, end] = batches[item];
+    thread_local std::vector<Vec2> uv;
+    thread_local std::vector<SurfacePoint> points;
+    uv.resize(end - begin), points.resize(end - begin);
+    for (std::size_t k = begin; k < end; ++k) uv[k - begin] = boundary[k].domain;
+    surface.evaluate(boundary[begin].face, uv, points);
+    for (std::size_t k = begin; k < end; ++k) {
+      const BoundaryNormal &b = boundary[k];
+      mesh.normals[b.id] = points[k - begin].normal;
+      if (record) mesh.domainPoints[b.id] = {b.face, b.domain};
+    }
+  });
 
   // Face interiors through evaluation plans: the plans first (each distinct
   // key built once, itself in parallel), then tiles of samples in parallel.
