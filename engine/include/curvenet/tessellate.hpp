@@ -5,7 +5,9 @@
 // Every network vertex and every sample on a segment is one mesh vertex,
 // shared by the faces on both sides: both sample a segment at the same curve
 // parameters (u = j / resolution along the segment), so the mesh is
-// watertight by construction. A face side that spans several segments (a
+// watertight by construction. Tessellating to a tolerance
+// (TessellationOptions::tolerance) gives each segment its own interval count
+// and each face its own rows, the sharing unchanged. A face side that spans several segments (a
 // T-node seen from the straight side) carries all their samples; its first
 // row of triangles is zipped onto the regular pattern. Normals come from the
 // exact surface derivatives.
