@@ -38,22 +38,33 @@ struct RowPoint {
   Vec2 domain; ///< domain point
 };
 
+/// Where zip writes: triangles straight into the mesh, and (when not null)
+/// each triangle's domain points, vertex by vertex.
+struct TriangleSink {
+  std::array<std::uint32_t, 3> *triangles;
+  std::array<Vec2, 3> *domains;
+  std::size_t capacity, written = 0;
+  void add(const RowPoint &a, const RowPoint &b, const RowPoint &c) {
+    CURVENET_CHECK(written < capacity, "a sector makes more triangles than its rows allow");
+    triangles[written] = {a.id, b.id, c.id};
+    if (domains) domains[written] = {a.domain, b.domain, c.domain};
+    ++written;
+  }
+};
+
 /// Triangulates the strip between two rows running in the same direction,
-/// `lower` nearer the side; counter-clockwise in the domain.
-/// With `domains`, also each triangle's domain points, vertex by vertex.
-void zip(const std::vector<RowPoint> &lower, const std::vector<RowPoint> &upper,
-         std::vector<std::array<std::uint32_t, 3>> &out, std::vector<std::array<Vec2, 3>> *domains = nullptr) {
+/// `lower` nearer the side; counter-clockwise in the domain. It makes
+/// (lower.size() − 1) + (upper.size() − 1) triangles.
+void zip(const std::vector<RowPoint> &lower, const std::vector<RowPoint> &upper, TriangleSink &out) {
   size_t j = 0, l = 0;
   while (j + 1 < lower.size() || l + 1 < upper.size()) {
     const bool advanceLower =
         l + 1 >= upper.size() || (j + 1 < lower.size() && lower[j + 1].t <= upper[l + 1].t + 1e-12);
     if (advanceLower) {
-      out.push_back({lower[j].id, lower[j + 1].id, upper[l].id});
-      if (domains) domains->push_back({lower[j].domain, lower[j + 1].domain, upper[l].domain});
+      out.add(lower[j], lower[j + 1], upper[l]);
       ++j;
     } else {
-      out.push_back({lower[j].id, upper[l + 1].id, upper[l].id});
-      if (domains) domains->push_back({lower[j].domain, upper[l + 1].domain, upper[l].domain});
+      out.add(lower[j], upper[l + 1], upper[l]);
       ++l;
     }
   }
@@ -423,13 +434,43 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
 
   // Triangles per fan sector (face f, side i): the sectors of a face are
   // independent (their own interior samples, spokes by formula), so even a
-  // single face spreads over the threads; the mesh takes them in order.
+  // single face spreads over the threads. A sector's triangle count is
+  // known from its rows — (b − 1) + r(r − 1) for b samples on its domain
+  // side (zip's count, row by row) — so each writes straight into its
+  // place in the mesh, the faces' sectors in order.
   std::vector<std::pair<int, int>> sectors;
   for (int f = 0; f < faces; ++f)
     if (wanted(f))
       for (int i = 0; i < surface.domainSides(f); ++i) sectors.push_back({f, i});
-  std::vector<std::vector<std::array<std::uint32_t, 3>>> sectorTriangles(sectors.size());
-  std::vector<std::vector<std::array<Vec2, 3>>> sectorDomains(domains ? sectors.size() : 0);
+  std::vector<std::size_t> sectorCount(sectors.size()), faceTriangles(faces, 0);
+  for (std::size_t item = 0; item < sectors.size(); ++item) {
+    const auto [f, i] = sectors[item];
+    const std::size_t r = static_cast<std::size_t>(layout.faceResolution[f]);
+    sectorCount[item] = rows[f][i].size() - 1 + r * (r - 1);
+    faceTriangles[f] += sectorCount[item];
+  }
+  if (only) {
+    // The same topology gives every face the same triangle count; only the
+    // zipping order along sides with T-nodes can move with the curves.
+    for (int f = 0; f < faces; ++f)
+      if (wanted(f))
+        CURVENET_CHECK(faceTriangles[f] == mesh.faceTriangleStart[f + 1] - mesh.faceTriangleStart[f],
+                       "face " + std::to_string(f) + " changed its triangle count");
+  } else {
+    mesh.faceTriangleStart.assign(1, 0);
+    for (int f = 0; f < faces; ++f)
+      mesh.faceTriangleStart.push_back(mesh.faceTriangleStart.back() + static_cast<std::uint32_t>(faceTriangles[f]));
+    mesh.triangles.resize(mesh.faceTriangleStart.back());
+  }
+  std::vector<std::size_t> destination(sectors.size());
+  for (std::size_t item = 0; item < sectors.size(); ++item) {
+    const bool first = item == 0 || sectors[item - 1].first != sectors[item].first;
+    destination[item] = first ? mesh.faceTriangleStart[sectors[item].first] : destination[item - 1] + sectorCount[item - 1];
+  }
+  if (domains) {
+    CURVENET_CHECK(!only, "triangle domain points are recorded for whole tessellations");
+    domains->resize(mesh.triangles.size());
+  }
   parallel::parallelFor(std::size_t{0}, sectors.size(), [&](std::size_t item) {
     const int f = sectors[item].first, i = sectors[item].second; // plain names: the lambdas below capture f
     const int n = surface.domainSides(f), r = layout.faceResolution[f];
@@ -450,8 +491,8 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
       ++placed;
     };
     if (i == 0) place(centre, {0, 0});
-    auto &out = sectorTriangles[item];
-    out.reserve(static_cast<size_t>(r) * r);
+    TriangleSink out{mesh.triangles.data() + destination[item], domains ? domains->data() + destination[item] : nullptr,
+                     sectorCount[item]};
     const Vec2 p0 = surface.domainCorner(f, i), p1 = surface.domainCorner(f, i + 1);
     std::vector<RowPoint> lower = rows[f][i], upper;
     std::uint32_t offset = interiorBase + static_cast<std::uint32_t>(i) * perTriangle;
@@ -469,45 +510,13 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
           upper.push_back({id, double(j) / m, uv});
         }
       }
-      zip(lower, upper, out, domains ? &sectorDomains[item] : nullptr);
+      zip(lower, upper, out);
       std::swap(lower, upper);
     }
+    CURVENET_CHECK(out.written == sectorCount[item], "face " + std::to_string(f) + " sector " + std::to_string(i) +
+                                                          ": triangle count differs from its rows'");
     if (placed) progress.advance(placed);
   });
-  // Each face's triangles are its sectors' in order (`sectors` lists a
-  // face's together); each sector is copied to its place in parallel.
-  std::vector<std::size_t> faceTriangles(faces, 0);
-  for (std::size_t item = 0; item < sectors.size(); ++item)
-    faceTriangles[sectors[item].first] += sectorTriangles[item].size();
-  if (only) {
-    // The same topology gives every face the same triangle count; only the
-    // zipping order along sides with T-nodes can move with the curves.
-    for (int f = 0; f < faces; ++f)
-      if (wanted(f))
-        CURVENET_CHECK(faceTriangles[f] == mesh.faceTriangleStart[f + 1] - mesh.faceTriangleStart[f],
-                       "face " + std::to_string(f) + " changed its triangle count");
-  } else {
-    mesh.faceTriangleStart.assign(1, 0);
-    for (int f = 0; f < faces; ++f)
-      mesh.faceTriangleStart.push_back(mesh.faceTriangleStart.back() + static_cast<std::uint32_t>(faceTriangles[f]));
-    mesh.triangles.resize(mesh.faceTriangleStart.back());
-  }
-  std::vector<std::size_t> destination(sectors.size());
-  for (std::size_t item = 0; item < sectors.size(); ++item) {
-    const bool first = item == 0 || sectors[item - 1].first != sectors[item].first;
-    destination[item] = first ? mesh.faceTriangleStart[sectors[item].first]
-                              : destination[item - 1] + sectorTriangles[item - 1].size();
-  }
-  parallel::parallelFor(std::size_t{0}, sectors.size(), [&](std::size_t item) {
-    std::copy(sectorTriangles[item].begin(), sectorTriangles[item].end(), mesh.triangles.begin() + destination[item]);
-  });
-  if (domains) {
-    CURVENET_CHECK(!only, "triangle domain points are recorded for whole tessellations");
-    domains->resize(mesh.triangles.size());
-    parallel::parallelFor(std::size_t{0}, sectors.size(), [&](std::size_t item) {
-      std::copy(sectorDomains[item].begin(), sectorDomains[item].end(), domains->begin() + destination[item]);
-    });
-  }
   if (only) return;
   progress.finish();
 }
