@@ -114,6 +114,17 @@ static void loopAndEvaluate(void) {
     EXPECT(largest == vertices - 1);
   }
 
+  /* To a tolerance: a finer one takes more triangles; no tolerance is refused. */
+  size_t coarse = 0, fine = 0;
+  EXPECT(curvenet_model_tessellate_to_tolerance(model, CURVENET_ALL_FACES, 1e-2, 0, 1, NULL, &coarse, &status) ==
+         CURVENET_OK);
+  EXPECT(curvenet_model_tessellate_to_tolerance(model, CURVENET_ALL_FACES, 1e-4, 10, 1, NULL, &fine, &status) ==
+         CURVENET_OK);
+  EXPECT(coarse > 0 && fine > coarse);
+  EXPECT(curvenet_model_tessellate_to_tolerance(model, CURVENET_ALL_FACES, 0, 0, 1, NULL, NULL, &status) ==
+         CURVENET_INVALID_ARGUMENT);
+  EXPECT(strcmp(status.element, "tolerance") == 0);
+
   /* Edit: raise curve 0's inner points; the side midpoint follows. */
   points[0][5] += 0.2;
   points[0][8] += 0.2;

@@ -79,6 +79,20 @@ TEST_F(Cli, TessellateWritesAClosedMesh) {
   EXPECT_EQ(static_cast<long>(vertices) - static_cast<long>(faces) / 2, 0);
 }
 
+TEST_F(Cli, TessellateToAToleranceReportsWhatItMeasured) {
+  const fs::path out = dir / "ellipsoid.obj";
+  const CliRun run = runCli("tessellate builtin:ellipsoid-truncated-icosahedron --tolerance 2e-3 --json -o '" +
+                            out.string() + "'");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const auto report = nlohmann::json::parse(run.out);
+  EXPECT_LE(report["deviation"].get<double>(), 2e-3);
+  EXPECT_GT(report["deviation"].get<double>(), 0.0);
+  EXPECT_LT(report["triangles"].get<std::size_t>(), report["uniform_triangles"].get<std::size_t>());
+  EXPECT_TRUE(fs::exists(out));
+  EXPECT_NE(runCli("tessellate builtin:pentagon --angle 5 --json").exitCode, 0); // --angle needs --tolerance
+  EXPECT_NE(runCli("tessellate builtin:pentagon").exitCode, 0);                  // neither -o nor --json
+}
+
 TEST_F(Cli, BadInputFailsClearlyAndWritesNothing) {
   const fs::path out = dir / "out.obj";
   const fs::path broken = dir / "broken.json";

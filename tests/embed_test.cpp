@@ -61,12 +61,66 @@ TEST(Embed, EvaluationEqualsTheSurfaceItWraps) {
     const Surface direct = Surface::build(Network::build(builtinNetwork("sphere-dodecahedron")), {.scheme = scheme});
     for (int face : {0, 7}) {
       const std::vector<Vec2> uv = domainPoints(*model, face, 300, face + 1);
-      std::vector<SurfacePoint> batch(uv.size());
+      std::vector<SurfacePoint> batch(uv.size()), directBatch(uv.size());
       ASSERT_TRUE(model->evaluate(face, uv, batch).ok());
+      direct.evaluate(face, uv, directBatch);
       for (std::size_t k = 0; k < uv.size(); ++k) {
-        ASSERT_TRUE(samePoint(batch[k], direct.evaluate(face, uv[k]))) << schemeName(scheme) << " point " << k;
-        ASSERT_TRUE(samePoint(*model->evaluate(face, uv[k]), batch[k]));
+        ASSERT_TRUE(samePoint(batch[k], directBatch[k])) << schemeName(scheme) << " point " << k;
+        ASSERT_TRUE(samePoint(*model->evaluate(face, uv[k]), direct.evaluate(face, uv[k])));
       }
+    }
+  }
+}
+
+/// How far a batched evaluation a is from the pointwise b, each part
+/// relative to its scale: the position to the model's diagonal, the
+/// derivatives to their own size (at least the diagonal's), and the unit
+/// normal times sin θ, θ the angle between du and dv (a normal's error is
+/// the derivatives' over sin θ).
+struct Disagreement {
+  double point = 0, derivatives = 0, normal = 0;
+  void add(const SurfacePoint &a, const SurfacePoint &b, double diagonal) {
+    const double scale = std::max({norm(b.du), norm(b.dv), diagonal});
+    const double sine = norm(cross(b.du, b.dv)) / (norm(b.du) * norm(b.dv));
+    point = std::max(point, norm(a.point - b.point) / diagonal);
+    derivatives = std::max({derivatives, norm(a.du - b.du) / scale, norm(a.dv - b.dv) / scale});
+    normal = std::max(normal, norm(a.normal - b.normal) * sine);
+  }
+};
+
+TEST(Embed, JetBatchesAgreeWithPointwiseEvaluationOnEveryBuiltin) {
+  // Every transfinite scheme and sweep through the batched path (tables,
+  // batched roots, the derivative kernels) against Surface::evaluate
+  // (gregory-g1's Hermite sweep takes the roots and kernel of the two below).
+  const std::vector<SurfaceOptions> schemes{{.scheme = Scheme::GregoryG1, .sweepline = Sweepline::Radial},
+                                            {.scheme = Scheme::GregoryG2, .sweepline = Sweepline::Hermite},
+                                            {.scheme = Scheme::GregoryG2, .sweepline = Sweepline::QuinticHermite},
+                                            {.scheme = Scheme::CompositeRibbon}};
+  for (const BuiltinInfo &info : builtinNetworks()) {
+    const NetworkDescription description = builtinNetwork(info.name);
+    for (const SurfaceOptions &options : schemes) {
+      auto model = Model::build(description, options);
+      if (!model.ok()) continue; // a scheme the network does not take (e.g. a G² master face)
+      BoundingBox box;
+      for (const Vertex &v : model->network().vertices()) box.add(v.position);
+      Disagreement worst;
+      for (int face = 0; face < model->faceCount(); ++face) {
+        std::vector<Vec2> uv = domainPoints(*model, face, 32, 11 * face + 1);
+        uv.push_back({0, 0});
+        for (int corner = 0; corner < model->domainSides(face); ++corner) uv.push_back(*model->domainCorner(face, corner));
+        std::vector<SurfacePoint> batch(uv.size());
+        ASSERT_TRUE(model->evaluate(face, uv, batch, {.threads = 1}).ok()) << info.name;
+        for (std::size_t k = 0; k < uv.size(); ++k)
+          worst.add(batch[k], model->surface(face)->evaluate(face, uv[k]), box.diagonal());
+      }
+      // The ribbon tables reproduce the ribbons to 1e-13 of their size and
+      // their slopes to 1e-10 (ribbon_table.hpp; measured here: derivatives
+      // ≤ 3e-12 of their scale, normals ≤ 3e-11 / sin θ).
+      const std::string what = info.name + " " + schemeName(options.scheme) + " sweep " +
+                               std::to_string(static_cast<int>(options.sweepline));
+      EXPECT_LE(worst.point, 1e-12) << what;
+      EXPECT_LE(worst.derivatives, 1e-11) << what;
+      EXPECT_LE(worst.normal, 1e-10) << what;
     }
   }
 }
@@ -83,6 +137,12 @@ TEST(Embed, BatchOutputDoesNotDependOnThreads) {
     ASSERT_TRUE(samePoint(serial[k], parallel[k])) << k;
     ASSERT_TRUE(samePoint(serial[k], two[k])) << k;
   }
+  // A point's result does not depend on where in a batch (which vector
+  // lane, which block) it comes.
+  const std::span<const Vec2> shifted = std::span(uv).subspan(3, 1000);
+  std::vector<SurfacePoint> alone(shifted.size());
+  ASSERT_TRUE(model->evaluate(0, shifted, alone, {.threads = 1}).ok());
+  for (std::size_t k = 0; k < shifted.size(); ++k) ASSERT_TRUE(samePoint(alone[k], serial[k + 3])) << k;
 }
 
 TEST(Embed, SecondOrderBatchMatchesSurfaceAndIsExactForG2Only) {

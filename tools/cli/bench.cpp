@@ -8,7 +8,8 @@
 // freshly built surface with the plan cache emptied: plans and ribbon tables
 // built), warm (plans and tables ready), on one thread and on all threads —
 // and the whole tessellation (positions, normals from exact derivatives,
-// triangles).
+// triangles); then batches at 65 536 random domain points through
+// Surface::evaluatePositions and, with du, dv and normals, Surface::evaluate.
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -55,7 +56,29 @@ struct SchemeFigures {
   std::size_t meshPoints = 0;
   double tessellation = 0;   ///< warm tessellation on one thread, s
   std::size_t planBytes = 0;
+  double coldPlans = 0;      ///< face interiors with the ribbon tables ready but no plans, one thread, s
+  std::size_t batchPoints = 0;
+  double batchPositions = 0; ///< Surface::evaluatePositions at batchPoints random domain points, one thread, s
+  double batchJets = 0;      ///< the same points with du, dv and normals (Surface::evaluate on spans), s
 };
+
+/// Random points inside each face's domain polygon, faces in turn.
+std::vector<std::pair<int, Vec2>> randomDomainPoints(const Surface &surface, std::size_t count) {
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> coordinate(-1, 1);
+  std::vector<std::pair<int, Vec2>> samples;
+  for (int k = 0; samples.size() < count; ++k) {
+    const int face = k % surface.faceCount(), n = surface.domainSides(face);
+    const Vec2 uv{coordinate(rng), coordinate(rng)};
+    bool inside = true;
+    for (int i = 0; i < n && inside; ++i) {
+      const Vec2 p = surface.domainCorner(face, i), q = surface.domainCorner(face, i + 1);
+      inside = cross(q - p, uv - p) > 0;
+    }
+    if (inside) samples.push_back({face, uv});
+  }
+  return samples;
+}
 
 /// Cold, warm and all-thread evaluation of face interiors on one thread, for
 /// the given schemes. The schemes take turns within each round and each
@@ -65,7 +88,7 @@ void measureEvaluation(const Network &network, std::vector<SchemeFigures *> figu
                        int rounds) {
   std::vector<Surface> surfaces;
   for (SchemeFigures *f : figures) {
-    f->cold = f->warm = f->warmThreads = INFINITY;
+    f->cold = f->warm = f->warmThreads = f->coldPlans = INFINITY;
     surfaces.push_back(Surface::build(network, {f->scheme}));
   }
   // One output buffer, as a program evaluating repeatedly would keep: the
@@ -87,6 +110,11 @@ void measureEvaluation(const Network &network, std::vector<SchemeFigures *> figu
           figures[k]->interiorPoints = evaluateFaceInteriors(fresh, points, {resolution, 1});
         }));
         figures[k]->planBytes = evaluationPlanCache().bytes; // this scheme's plans alone
+        // Plans alone: the same surface again (its ribbon tables now built), the plans dropped.
+        clearEvaluationPlans();
+        figures[k]->coldPlans = std::min(figures[k]->coldPlans, seconds([&] {
+          evaluateFaceInteriors(fresh, points, {resolution, 1});
+        }));
       }
       for (const Surface &surface : surfaces) evaluateFaceInteriors(surface, points, {resolution, 1}); // plans again
       for (int repeat = 0; repeat < 2; ++repeat)
@@ -110,20 +138,19 @@ SchemeFigures measure(const Network &network, Scheme scheme, int resolution, int
   f.scheme = scheme, f.name = schemeName(scheme);
   std::optional<Surface> surface;
   f.build = fastest([&] { surface = Surface::build(network, {scheme}); });
-  // Random points inside each face's domain polygon, faces in turn.
-  std::mt19937 rng(1);
-  std::uniform_real_distribution<double> coordinate(-1, 1);
-  std::vector<std::pair<int, Vec2>> samples;
-  for (int k = 0; samples.size() < static_cast<size_t>(points); ++k) {
-    const int face = k % surface->faceCount(), n = surface->domainSides(face);
-    const Vec2 uv{coordinate(rng), coordinate(rng)};
-    bool inside = true;
-    for (int i = 0; i < n && inside; ++i) {
-      const Vec2 p = surface->domainCorner(face, i), q = surface->domainCorner(face, i + 1);
-      inside = cross(q - p, uv - p) > 0;
-    }
-    if (inside) samples.push_back({face, uv});
-  }
+  const std::vector<std::pair<int, Vec2>> samples = randomDomainPoints(*surface, static_cast<std::size_t>(points));
+  // Batches at arbitrary points, as an embedding program makes them: one
+  // span of random domain points per face.
+  constexpr std::size_t kBatchPoints = 1 << 16;
+  std::vector<std::vector<Vec2>> batches(static_cast<std::size_t>(surface->faceCount()));
+  for (const auto &[face, uv] : randomDomainPoints(*surface, kBatchPoints)) batches[face].push_back(uv);
+  std::vector<Vec3> positions(kBatchPoints);
+  std::vector<SurfacePoint> jets(kBatchPoints);
+  f.batchPoints = kBatchPoints;
+  auto eachBatch = [&](auto &&evaluate) {
+    for (int face = 0; face < surface->faceCount(); ++face) evaluate(face, std::span<const Vec2>(batches[face]));
+  };
+  eachBatch([&](int face, std::span<const Vec2> uv) { surface->evaluatePositions(face, uv, positions); }); // tables
   {
     tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
     f.pointwise = fastest([&] {
@@ -132,6 +159,12 @@ SchemeFigures measure(const Network &network, Scheme scheme, int resolution, int
       if (!std::isfinite(sum)) std::fprintf(stderr, "non-finite point\n");
     });
     f.tessellation = fastest([&] { f.meshPoints = tessellate(*surface, {resolution, 1}).positions.size(); });
+    f.batchPositions = fastest([&] {
+      eachBatch([&](int face, std::span<const Vec2> uv) { surface->evaluatePositions(face, uv, positions); });
+    });
+    f.batchJets = fastest([&] {
+      eachBatch([&](int face, std::span<const Vec2> uv) { surface->evaluate(face, uv, jets); });
+    });
   }
   return f;
 }
@@ -162,9 +195,15 @@ nlohmann::json benchReport(const BenchOptions &options) {
   out["g2_over_g1_pointwise_cost"] = g2.pointwise / g1.pointwise;
   out["g2_over_g1_build_cost"] = g2.build / g1.build;
   out["g2_over_g1_tessellation_cost"] = g2.tessellation / g1.tessellation;
+  out["g2_positions_any_points_per_second_per_core"] = perSecond(g2.batchPoints, g2.batchPositions);
+  out["g2_jets_any_points_per_second_per_core"] = perSecond(g2.batchPoints, g2.batchJets);
   out["g2_tessellation_points_per_second_per_core"] = perSecond(g2.meshPoints, g2.tessellation);
   out["warm_over_cold_speedup"] = g2.cold / g2.warm;
   out["thread_speedup"] = g2.warm / g2.warmThreads;
+  // Plans built, per face-interior sample evaluated (on one-face
+  // inputs such as the default: per plan sample).
+  out["plan_build_ns_per_sample"] = (g2.coldPlans - g2.warm) / g2.interiorPoints * 1e9;
+  out["cache_saved_fraction"] = (g2.cold - g2.warm) / g2.cold;
   for (const SchemeFigures &f : figures)
     out["schemes"][f.name] = {{"build_seconds", f.build},
                               {"pointwise_points", options.points},
@@ -178,7 +217,12 @@ nlohmann::json benchReport(const BenchOptions &options) {
                               {"mesh_points", f.meshPoints},
                               {"tessellation_seconds", f.tessellation},
                               {"tessellation_points_per_second", perSecond(f.meshPoints, f.tessellation)},
-                              {"plan_cache_bytes", f.planBytes}};
+                              {"plan_cache_bytes", f.planBytes},
+                              {"plan_build_ns_per_sample", (f.coldPlans - f.warm) / f.interiorPoints * 1e9},
+                              {"cache_saved_fraction", (f.cold - f.warm) / f.cold},
+                              {"any_points", f.batchPoints},
+                              {"positions_any_points_per_second", perSecond(f.batchPoints, f.batchPositions)},
+                              {"jets_any_points_per_second", perSecond(f.batchPoints, f.batchJets)}};
   return out;
 }
 
@@ -228,6 +272,10 @@ Command addBenchCommand(CLI::App &app) {
                         out["g2_over_g1_eval_cost"].get<double>(), out["g2_over_g1_tessellation_cost"].get<double>());
             std::printf("G2 warm over cold: %.2fx; %d threads over 1: %.2fx\n",
                         out["warm_over_cold_speedup"].get<double>(), threads, out["thread_speedup"].get<double>());
+            std::printf("G2 at %zu random domain points, one thread: positions %.3g/s, with du, dv, normals %.3g/s\n",
+                        out["schemes"]["gregory-g2"]["any_points"].get<std::size_t>(),
+                        out["g2_positions_any_points_per_second_per_core"].get<double>(),
+                        out["g2_jets_any_points_per_second_per_core"].get<double>());
             return 0;
           }};
 }

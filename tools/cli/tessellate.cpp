@@ -1,5 +1,8 @@
 // curvenet tessellate INPUT -o FILE.{obj,ply} [--scheme S] [--masters M] [--curves C] [--strict] [--resolution R] [--threads T]
+//                    [--tolerance T [--angle DEG]] [--json]
 // and curvenet demo [--out DIR]: the default network's mesh and report.
+#include <nlohmann/json.hpp>
+
 #include <cstdio>
 #include <filesystem>
 
@@ -19,12 +22,14 @@ Command addTessellateCommand(CLI::App &app) {
   struct Options {
     std::string input, output, format, scheme = "gregory-g1", masters = "rebuilt", curves = "repaired", controlNets;
     int resolution = 16, threads = 0;
-    bool quiet = false, strict = false;
+    double tolerance = 0, angle = 0;
+    bool quiet = false, strict = false, json = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App *sub = app.add_subcommand("tessellate", "Tessellate every face into one watertight mesh");
   sub->add_option("INPUT", o->input, "network file (.json, .lop), - (standard input) or builtin:NAME")->required();
-  sub->add_option("-o,--output", o->output, "output mesh (.obj or .ply; - = standard output, with --format)")->required();
+  sub->add_option("-o,--output", o->output,
+                  "output mesh (.obj or .ply; - = standard output, with --format); required unless --json");
   sub->add_option("--format", o->format, "mesh format when the output's extension does not say it")
       ->check(CLI::IsMember({"obj", "ply"}));
   sub->add_option("--scheme", o->scheme, schemeChoices())->capture_default_str();
@@ -36,24 +41,64 @@ Command addTessellateCommand(CLI::App &app) {
       ->check(wholeNumberIn(1, 4096))
       ->capture_default_str();
   addThreadsOption(sub, o->threads);
+  sub->add_option("--tolerance", o->tolerance,
+                  "chordal tolerance relative to the diagonal: each face and segment gets its own resolution")
+      ->check(numberIn(0.0, 1.0));
+  sub->add_option("--angle", o->angle, "with --tolerance: largest angle between an edge's end normals, degrees")
+      ->check(numberIn(0.0, 90.0));
+  sub->add_flag("--json", o->json, "print the mesh sizes and the measured deviation as one JSON object");
   addQuietFlag(sub, o->quiet);
   return {sub, [o] {
-            checkMeshOutput(o->output, o->format, "--output");
+            if (!o->output.empty()) checkMeshOutput(o->output, o->format, "--output");
             const SurfaceOptions options = parseSurfaceOptions(o->scheme, o->masters, o->curves);
             const Scheme scheme = options.scheme;
             if (!o->controlNets.empty() && scheme != Scheme::BezierG1 && scheme != Scheme::CoonsC0)
               throw InputError("", "--control-nets", "needs --scheme bezier-g1 or coons-c0");
+            if (o->output.empty() && !o->json) throw InputError("", "-o/--output", "is required (or give --json)");
+            if (o->angle > 0 && !(o->tolerance > 0)) throw InputError("", "--angle", "needs --tolerance");
             const Network network = Network::build(loadNetworkArgument(o->input), o->input);
             const Surface surface = buildSurface(network, options, o->input);
             warnAboutFolds(surface);
             noteRepair(surface);
             enforceShape(surface, measureShape(surface), o->strict);
-            refuseIfTooLarge(estimateMeshBytes(estimateMeshVertices(surface, o->resolution), true),
-                             "--resolution " + std::to_string(o->resolution));
-            const Mesh mesh = tessellateShowingProgress(surface, {o->resolution, o->threads}, "tessellate",
-                                                        progressWanted(o->quiet));
-            writeMeshArgument(mesh, o->output, o->format);
+            TessellationOptions tessellation{o->resolution, o->threads};
+            tessellation.tolerance = o->tolerance, tessellation.angle = o->angle;
+            if (!(o->tolerance > 0))
+              refuseIfTooLarge(estimateMeshBytes(estimateMeshVertices(surface, o->resolution), true),
+                               "--resolution " + std::to_string(o->resolution));
+            TessellationReport report;
+            const Mesh mesh = o->tolerance > 0 || o->json ? tessellate(surface, tessellation, report)
+                                                          : tessellateShowingProgress(surface, tessellation, "tessellate",
+                                                                                      progressWanted(o->quiet));
+            if (!o->output.empty()) writeMeshArgument(mesh, o->output, o->format);
             if (!o->controlNets.empty()) writeControlNets(surface, o->controlNets);
+            if (o->json) {
+              nlohmann::json out = {{"input", o->input},
+                                    {"scheme", o->scheme},
+                                    {"vertices", mesh.positions.size()},
+                                    {"triangles", mesh.triangles.size()},
+                                    {"deviation", report.deviation},
+                                    {"max_normal_angle_deg", report.angle},
+                                    {"min_resolution", report.minResolution},
+                                    {"max_resolution", report.maxResolution},
+                                    {"passes", report.passes},
+                                    {"uniform_resolution", report.uniformResolution},
+                                    {"uniform_triangles", report.uniformTriangles}};
+              if (o->tolerance > 0) out["tolerance"] = o->tolerance;
+              if (o->angle > 0) out["angle_deg"] = o->angle;
+              if (!o->output.empty()) out["output"] = o->output;
+              std::fprintf(o->output == "-" ? stderr : stdout, "%s\n", out.dump(2).c_str());
+              return 0;
+            }
+            if (o->tolerance > 0) {
+              std::fprintf(summaryStream(o->output),
+                           "%s: %zu vertices, %zu triangles (%s, tolerance %g: face resolutions %d-%d, measured "
+                           "deviation %.3g, normal angle %.3g deg; uniform resolution %d would need %zu triangles)\n",
+                           o->output.c_str(), mesh.positions.size(), mesh.triangles.size(), o->scheme.c_str(),
+                           o->tolerance, report.minResolution, report.maxResolution, report.deviation, report.angle,
+                           report.uniformResolution, report.uniformTriangles);
+              return 0;
+            }
             std::fprintf(summaryStream(o->output), "%s: %zu vertices, %zu triangles (%s, resolution %d)\n", o->output.c_str(),
                         mesh.positions.size(), mesh.triangles.size(), o->scheme.c_str(), o->resolution);
             return 0;

@@ -227,8 +227,10 @@ typedef struct curvenet_point2 {
 /* Evaluates face `face` at `count` domain points uv[2k], uv[2k+1] into
  * out[k]. Points outside the domain get NaN and the call returns
  * CURVENET_OUT_OF_DOMAIN naming the first; the rest are evaluated. `batch`
- * NULL = defaults. Cost: one patch evaluation per point (O(n) ribbon
- * evaluations), spread over threads for large batches. */
+ * NULL = defaults. Batches of 32 points or more take the batched path of
+ * Model::evaluate (ribbon tables, batched sweepline roots, SIMD derivative
+ * kernels: about 10x the single-point rate, agreeing with it to ~1e-11
+ * relative; curvenet.hpp says exactly), spread over threads when large. */
 curvenet_status_code curvenet_model_evaluate(const curvenet_model *model, int face, const double *uv, size_t count,
                                              curvenet_point *out, const curvenet_batch_options *batch,
                                              curvenet_status *status);
@@ -263,6 +265,17 @@ curvenet_status_code curvenet_model_evaluate_positions(const curvenet_model *mod
 curvenet_status_code curvenet_model_tessellate(curvenet_model *model, int face, int resolution, int threads,
                                                size_t *vertex_count, size_t *triangle_count,
                                                curvenet_status *status);
+
+/* As curvenet_model_tessellate, but to a chordal `tolerance` relative to the
+ * network's diagonal, in (0, 1), and, when `angle_deg` > 0, with the normals
+ * at the two ends of every mesh edge within angle_deg degrees: each face and
+ * segment gets its own resolution, chosen by measuring the mesh against the
+ * exact surface; watertight where neighbouring faces differ (TessellationOptions
+ * in curvenet/tessellate.hpp). The model must have one option set for every
+ * face (CURVENET_INVALID_ARGUMENT otherwise). */
+curvenet_status_code curvenet_model_tessellate_to_tolerance(curvenet_model *model, int face, double tolerance,
+                                                            double angle_deg, int threads, size_t *vertex_count,
+                                                            size_t *triangle_count, curvenet_status *status);
 
 /* Copies the kept mesh: positions and normals as x y z triples (capacities
  * in vertices), triangles as three vertex indices each, counter-clockwise

@@ -370,6 +370,24 @@ curvenet_status_code curvenet_model_tessellate(curvenet_model *model, int face, 
   return report({}, status);
 }
 
+curvenet_status_code curvenet_model_tessellate_to_tolerance(curvenet_model *model, int face, double tolerance,
+                                                            double angle_deg, int threads, size_t *vertex_count,
+                                                            size_t *triangle_count, curvenet_status *status) {
+  if (!model) return nullArgument("model", status);
+  if (!(tolerance > 0 && tolerance < 1))
+    return report({StatusCode::InvalidArgument, "", "tolerance", "must lie in (0, 1) (relative to the diagonal)"},
+                  status);
+  TessellationOptions options;
+  options.tolerance = tolerance;
+  options.angle = angle_deg;
+  options.threads = threads;
+  const Result<MeshSize> size = model->model.tessellate(options, face);
+  if (!size) return report(size.status(), status);
+  if (vertex_count) *vertex_count = size->vertices;
+  if (triangle_count) *triangle_count = size->triangles;
+  return report({}, status);
+}
+
 curvenet_status_code curvenet_model_copy_mesh(const curvenet_model *model, double *positions,
                                               size_t position_capacity, double *normals, size_t normal_capacity,
                                               uint32_t *triangles, size_t triangle_capacity,

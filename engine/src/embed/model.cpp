@@ -212,7 +212,9 @@ struct Model::Impl {
     // One surface, same topology: the cached whole-network tessellation is
     // brought up to date on the changed faces only (plans reused), so the
     // next tessellate at that resolution costs a copy.
-    if (partial && old.whole && impl->groups.size() == 1) {
+    // (A mesh made to a tolerance is made afresh: the edit may change the
+    // resolutions it needs.)
+    if (partial && old.whole && impl->groups.size() == 1 && !(old.wholeOptions.tolerance > 0)) {
       impl->whole = *old.whole;
       impl->wholeOptions = old.wholeOptions;
       retessellateFaces(impl->groups[0].surface, changed, *impl->whole, impl->wholeOptions);
@@ -461,8 +463,13 @@ Result<SurfacePoint> Model::evaluate(int face, const Vec2 &uv) const {
 Status Model::evaluate(int face, std::span<const Vec2> uv, std::span<SurfacePoint> out,
                        const BatchOptions &options) const {
   return guarded<Status>([&] {
-    return impl_->batch(face, uv, out, options,
-                        [face](const Surface &s, const Vec2 &p) { return s.evaluate(face, p); });
+    return impl_->batchRanges(
+        face, uv, out, options,
+        [&](const Surface &surface, const DomainPolygon &, std::size_t begin, std::size_t end) {
+          // Outside points are evaluated too (finite or not, never a fault)
+          // and set to NaN by batchRanges.
+          surface.evaluate(face, uv.subspan(begin, end - begin), out.subspan(begin, end - begin));
+        });
   });
 }
 
@@ -504,6 +511,14 @@ Result<MeshSize> Model::tessellate(const TessellationOptions &options, int face)
   if (options.threads < 0) return failure(StatusCode::InvalidArgument, "threads", "must be ≥ 0");
   if (face != allFaces && !impl_->validFace(face))
     return failure(StatusCode::InvalidArgument, faceName(face), "no such face");
+  const bool toTolerance = options.tolerance != 0 || options.angle != 0;
+  if (toTolerance && !(options.tolerance > 0 && options.tolerance < 1))
+    return failure(StatusCode::InvalidArgument, "tolerance", "must lie in (0, 1) (relative to the diagonal)");
+  if (toTolerance && !(options.angle >= 0 && options.angle < 90))
+    return failure(StatusCode::InvalidArgument, "angle", "must lie in [0, 90) degrees");
+  if (toTolerance && impl_->groups.size() > 1)
+    return failure(StatusCode::InvalidArgument, "tolerance",
+                   "needs one option set for every face (each surface would choose its own resolutions)");
   return guarded<Result<MeshSize>>([&]() -> Result<MeshSize> {
     Impl &m = *impl_;
     // Refused before any work when it could not fit in memory, as the
@@ -511,13 +526,15 @@ Result<MeshSize> Model::tessellate(const TessellationOptions &options, int face)
     // out-of-memory killer. Per vertex: positions, normals and about two
     // triangles (72 B) for each surface's mesh, the merged whole mesh and
     // the kept copy, plus the tessellator's staging (~32 B).
+    // (A tolerance's resolutions are known only once measured.)
     const double vertices = static_cast<double>(estimateMeshVertices(m.groups[0].surface, options.resolution));
     if (const std::string shortfall =
             memoryShortfall(vertices * (72.0 * static_cast<double>(m.groups.size() + 2) + 32));
-        !shortfall.empty())
+        !toTolerance && !shortfall.empty())
       return failure(StatusCode::OutOfMemory, "resolution", std::to_string(options.resolution) + " " + shortfall);
     if (!m.whole || m.wholeOptions.resolution != options.resolution ||
-        m.wholeOptions.recordDomainPoints != options.recordDomainPoints) {
+        m.wholeOptions.recordDomainPoints != options.recordDomainPoints ||
+        m.wholeOptions.tolerance != options.tolerance || m.wholeOptions.angle != options.angle) {
       m.whole.reset();
       m.hasMesh = false;
       m.whole = m.tessellateWhole(options);

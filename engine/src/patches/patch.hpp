@@ -113,6 +113,19 @@ public:
   /// Hermite sweep; other schemes and sweeps point by point. Agrees with
   /// evaluate() to ~1e-12 relative. Thread-safe; scratch is per thread.
   void evaluateBatch(std::size_t count, const double *u, const double *v, DualVec3 *out) const;
+  /// evaluate() at many arbitrary domain points (u[k], v[k]), k < count,
+  /// for an embedding program's batches: per side the sweep parameter with
+  /// its gradient (radial in closed form, cubic Hermite by the batched
+  /// solver and implicit differentiation; triangles and the quintic sweep
+  /// per point as evaluate()), the corner blends, then tables() and the
+  /// derivative kernel; composite-ribbon through the tables and its jet
+  /// kernel; the Bézier schemes point by point. Agrees with evaluate() to
+  /// ~1e-12 relative (derivatives: the tables' slopes, ~1e-11). With
+  /// `count` a multiple of 8 no point falls into the kernels' one-lane
+  /// tails, which round differently from their vector lanes: each point's
+  /// result is then the same whatever batch and lane it comes in.
+  /// Thread-safe; scratch is per thread.
+  void evaluateJets(std::size_t count, const double *u, const double *v, DualVec3 *out) const;
   /// Positions at arbitrary domain points (u[k], v[k]), k < count, into
   /// out[c][k]: per side the sweep parameter (radial in closed form, cubic
   /// Hermite by the batched solver kernels::hermiteSweepRoots), the corner

@@ -831,6 +831,40 @@ void Surface::evaluatePositions(int face, std::span<const Vec2> uv, std::span<Ve
   }
 }
 
+void Surface::evaluate(int face, std::span<const Vec2> uv, std::span<SurfacePoint> out) const {
+  CURVENET_CHECK(out.size() >= uv.size(), "evaluate: output shorter than the input");
+  constexpr std::size_t kSmallestBatch = 32, kChunk = 1024;
+  if (impl_->bezier || uv.size() < kSmallestBatch) {
+    for (std::size_t k = 0; k < uv.size(); ++k) out[k] = evaluate(face, uv[k]);
+    return;
+  }
+  const Patch &patch = *impl_->patches.at(face);
+  thread_local std::vector<double> coordinates;
+  thread_local std::vector<DualVec3> jets;
+  coordinates.resize(2 * kChunk), jets.resize(kChunk);
+  double *u = coordinates.data(), *v = u + kChunk;
+  for (std::size_t first = 0; first < uv.size(); first += kChunk) {
+    const std::size_t m = std::min(kChunk, uv.size() - first);
+    for (std::size_t k = 0; k < m; ++k) u[k] = uv[first + k].x, v[k] = uv[first + k].y;
+    // Whole vectors (Patch::evaluateJets): the last point repeated.
+    const std::size_t padded = (m + 7) / 8 * 8;
+    std::fill(u + m, u + padded, u[m - 1]), std::fill(v + m, v + padded, v[m - 1]);
+    patch.evaluateJets(padded, u, v, jets.data());
+    for (std::size_t k = 0; k < m; ++k) {
+      const DualVec3 &r = jets[k];
+      const Vec3 normal = cross(r.du, r.dv);
+      // Parallel derivatives (straight-angle corners) or a point the
+      // batched formula cannot take: the pointwise evaluation decides.
+      const double size = squaredNorm(normal);
+      if (!(size > 1e-24 * squaredNorm(r.du) * squaredNorm(r.dv)) || !isFinite(r.v) || !std::isfinite(size)) {
+        out[first + k] = evaluate(face, uv[first + k]);
+        continue;
+      }
+      out[first + k] = {r.v + impl_->origin, r.du, r.dv, normalized(normal)};
+    }
+  }
+}
+
 SurfacePoint Surface::evaluate(int face, const Vec2 &uv) const {
   if (impl_->bezier) {
     // Square domain → (u, v) ∈ [0, 1]² (see the header); d(u,v)/d(x,y) = 1/width.

@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <string>
 
@@ -37,26 +38,40 @@ struct RowPoint {
   Vec2 domain; ///< domain point
 };
 
+/// Where zip writes: triangles straight into the mesh, and (when not null)
+/// each triangle's domain points, vertex by vertex.
+struct TriangleSink {
+  std::array<std::uint32_t, 3> *triangles;
+  std::array<Vec2, 3> *domains;
+  std::size_t capacity, written = 0;
+  void add(const RowPoint &a, const RowPoint &b, const RowPoint &c) {
+    CURVENET_CHECK(written < capacity, "a sector makes more triangles than its rows allow");
+    triangles[written] = {a.id, b.id, c.id};
+    if (domains) domains[written] = {a.domain, b.domain, c.domain};
+    ++written;
+  }
+};
+
 /// Triangulates the strip between two rows running in the same direction,
-/// `lower` nearer the side; counter-clockwise in the domain.
-void zip(const std::vector<RowPoint> &lower, const std::vector<RowPoint> &upper,
-         std::vector<std::array<std::uint32_t, 3>> &out) {
+/// `lower` nearer the side; counter-clockwise in the domain. It makes
+/// (lower.size() − 1) + (upper.size() − 1) triangles.
+void zip(const std::vector<RowPoint> &lower, const std::vector<RowPoint> &upper, TriangleSink &out) {
   size_t j = 0, l = 0;
   while (j + 1 < lower.size() || l + 1 < upper.size()) {
     const bool advanceLower =
         l + 1 >= upper.size() || (j + 1 < lower.size() && lower[j + 1].t <= upper[l + 1].t + 1e-12);
     if (advanceLower) {
-      out.push_back({lower[j].id, lower[j + 1].id, upper[l].id});
+      out.add(lower[j], lower[j + 1], upper[l]);
       ++j;
     } else {
-      out.push_back({lower[j].id, upper[l + 1].id, upper[l].id});
+      out.add(lower[j], upper[l + 1], upper[l]);
       ++l;
     }
   }
 }
 
 struct Layout {
-  int resolution;
+  std::vector<int> faceResolution;         ///< rows per centre–side triangle of each face
   std::vector<int> segmentIntervals;       ///< samples per segment
   std::vector<std::uint32_t> segmentBase;  ///< first interior sample id
   std::vector<std::uint32_t> faceBase;     ///< first interior id of each face
@@ -71,16 +86,19 @@ constexpr std::size_t kTileSamples = 512;
 // Below this many samples in all, tessellation runs serially.
 constexpr std::size_t kSerialSamples = 4096;
 
-Layout makeLayout(const Surface &surface, int resolution) {
+/// The layout with each face's resolution and each segment's intervals
+/// given (a segment's intervals are its own: both faces along it use them).
+Layout makeLayout(const Surface &surface, std::vector<int> faceResolution, std::vector<int> segmentIntervals) {
   const Network &net = surface.network();
   Layout layout;
-  layout.resolution = resolution;
-  layout.segmentIntervals.assign(net.segments().size(), resolution);
+  layout.faceResolution = std::move(faceResolution);
+  layout.segmentIntervals = std::move(segmentIntervals);
   // Segments on 2-sided faces need their midpoint as a sample (a domain corner).
   for (size_t f = 0; f < net.faces().size(); ++f)
     if (net.faces()[f].sideCount() == 2)
       for (const FaceSide &side : net.faces()[f].sides)
-        if (side.segments.size() == 1 && resolution % 2) layout.segmentIntervals[side.segments[0]] = resolution + 1;
+        if (side.segments.size() == 1 && layout.segmentIntervals[side.segments[0]] % 2)
+          ++layout.segmentIntervals[side.segments[0]];
   std::uint32_t next = static_cast<std::uint32_t>(net.vertices().size());
   for (size_t e = 0; e < net.segments().size(); ++e) {
     layout.segmentBase.push_back(next);
@@ -88,10 +106,16 @@ Layout makeLayout(const Surface &surface, int resolution) {
   }
   for (int f = 0; f < surface.faceCount(); ++f) {
     layout.faceBase.push_back(next);
-    next += faceInteriorCount(surface.domainSides(f), resolution);
+    next += faceInteriorCount(surface.domainSides(f), layout.faceResolution[f]);
   }
   layout.vertexCount = next;
   return layout;
+}
+
+/// The uniform layout: `resolution` everywhere.
+Layout makeLayout(const Surface &surface, int resolution) {
+  return makeLayout(surface, std::vector<int>(static_cast<std::size_t>(surface.faceCount()), resolution),
+                    std::vector<int>(surface.network().segments().size(), resolution));
 }
 
 /// Sample ids along segment e at index j ∈ [0, intervals].
@@ -146,7 +170,7 @@ struct Tile {
 /// The plan and the tiles of samples of every face `wanted` accepts: its
 /// rotation groups, members of at most kTileSamples.
 template <class Wanted>
-std::vector<Tile> planTiles(const Surface &surface, int resolution,
+std::vector<Tile> planTiles(const Surface &surface, const std::vector<int> &faceResolution,
                             std::vector<std::shared_ptr<const EvaluationPlan>> &plans, std::size_t &total,
                             const Wanted &wanted) {
   std::vector<Tile> tiles;
@@ -154,7 +178,7 @@ std::vector<Tile> planTiles(const Surface &surface, int resolution,
   plans.assign(static_cast<std::size_t>(surface.faceCount()), nullptr);
   for (int f = 0; f < surface.faceCount(); ++f) {
     if (!wanted(f)) continue;
-    plans[f] = evaluationPlan(planKey(surface.faceOptions(f), surface.domainSides(f), resolution));
+    plans[f] = evaluationPlan(planKey(surface.faceOptions(f), surface.domainSides(f), faceResolution[f]));
     const std::size_t size = plans[f]->size();
     for (const EvaluationPlan::Group &g : plans[f]->groups(kTileSamples)) tiles.push_back({f, g});
     total += size;
@@ -220,7 +244,9 @@ std::size_t evaluateFaceInteriors(const Surface &surface, std::span<Vec3> out, c
   const bool transfinite = faces > 0 && SurfaceAccess::patch(surface, 0) != nullptr;
   if (!transfinite || !options.usePlans) {
     // The Bézier schemes (and the pointwise reference): tessellate's own points.
-    const Mesh mesh = tessellate(surface, options);
+    TessellationOptions uniform = options;
+    uniform.tolerance = 0; // face interiors are at options.resolution
+    const Mesh mesh = tessellate(surface, uniform);
     const Layout layout = makeLayout(surface, options.resolution);
     const auto interior = mesh.positions.begin() + static_cast<std::ptrdiff_t>(layout.faceBase.front());
     CURVENET_CHECK(static_cast<std::size_t>(mesh.positions.end() - interior) == count,
@@ -232,7 +258,9 @@ std::size_t evaluateFaceInteriors(const Surface &surface, std::span<Vec3> out, c
   if (options.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, options.threads);
   std::vector<std::shared_ptr<const EvaluationPlan>> plans;
   std::size_t total = 0;
-  const std::vector<Tile> tiles = planTiles(surface, options.resolution, plans, total, [](int) { return true; });
+  const std::vector<Tile> tiles =
+      planTiles(surface, std::vector<int>(static_cast<std::size_t>(faces), options.resolution), plans, total,
+                [](int) { return true; });
   CURVENET_CHECK(total == count, "face interiors: plans and layout disagree on the sample count");
   std::vector<std::size_t> faceBase(static_cast<std::size_t>(faces) + 1, 0);
   for (int f = 0; f < faces; ++f) faceBase[f + 1] = faceBase[f] + plans[f]->size();
@@ -286,12 +314,12 @@ namespace {
 /// topology: their interior samples, their boundary samples and the normals
 /// those faces own, and their triangles. Everything is computed exactly as a
 /// full run computes it, so the result equals a full tessellation.
-void tessellateInto(const Surface &surface, const TessellationOptions &options, const std::vector<char> *only,
-                    Mesh &mesh) {
-  checkResolution(surface, options.resolution);
+/// `layout` gives every face's resolution and every segment's intervals;
+/// with `domains`, every triangle's domain points (in its face's domain)
+/// go there, in triangle order.
+void tessellateInto(const Surface &surface, const TessellationOptions &options, const Layout &layout,
+                    const std::vector<char> *only, Mesh &mesh, std::vector<std::array<Vec2, 3>> *domains = nullptr) {
   const Network &net = surface.network();
-  const int r = options.resolution;
-  const Layout layout = makeLayout(surface, r);
   const int faces = surface.faceCount();
   auto wanted = [&](int f) { return !only || (*only)[f]; };
 
@@ -311,7 +339,7 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
   }
   std::uint64_t interiorSamples = 0;
   for (int f = 0; f < faces; ++f)
-    if (wanted(f)) interiorSamples += faceInteriorCount(surface.domainSides(f), r);
+    if (wanted(f)) interiorSamples += faceInteriorCount(surface.domainSides(f), layout.faceResolution[f]);
   ProgressCounter progress(options.progress, interiorSamples);
   std::vector<std::vector<std::vector<RowPoint>>> rows(faces);
   parallel::parallelFor(0, faces, [&](int f) { rows[f] = boundaryRows(surface, layout, f); });
@@ -344,16 +372,31 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
             if (wanted(f)) boundary.push_back({p.id, f, p.domain}); // else owned by a face kept as it was
           }
   }
-  // A few microseconds a point (G²: two sweeps per point end on a side).
-  constexpr std::size_t kBoundaryGrain = 64;
-  parallel::parallelFor(tbb::blocked_range<std::size_t>(0, boundary.size(), kBoundaryGrain),
-                        [&](const tbb::blocked_range<std::size_t> &range) {
-                          for (std::size_t k = range.begin(); k < range.end(); ++k) {
-                            const BoundaryNormal &b = boundary[k];
-                            mesh.normals[b.id] = surface.evaluate(b.face, b.domain).normal;
-                            if (record) mesh.domainPoints[b.id] = {b.face, b.domain};
-                          }
-                        });
+  // Batches of one face's boundary points (`boundary` lists them face by
+  // face) through the batched evaluation: a point's normal depends only on
+  // its face's run and its place in it, never on the threads, and a
+  // re-tessellation sees the same runs.
+  constexpr std::size_t kBoundaryBatch = 1024;
+  std::vector<std::pair<std::size_t, std::size_t>> batches;
+  for (std::size_t begin = 0; begin < boundary.size();) {
+    std::size_t end = begin;
+    while (end < boundary.size() && end - begin < kBoundaryBatch && boundary[end].face == boundary[begin].face) ++end;
+    batches.push_back({begin, end});
+    begin = end;
+  }
+  parallel::parallelFor(std::size_t{0}, batches.size(), [&](std::size_t item) {
+    const auto [begin, end] = batches[item];
+    thread_local std::vector<Vec2> uv;
+    thread_local std::vector<SurfacePoint> points;
+    uv.resize(end - begin), points.resize(end - begin);
+    for (std::size_t k = begin; k < end; ++k) uv[k - begin] = boundary[k].domain;
+    surface.evaluate(boundary[begin].face, uv, points);
+    for (std::size_t k = begin; k < end; ++k) {
+      const BoundaryNormal &b = boundary[k];
+      mesh.normals[b.id] = points[k - begin].normal;
+      if (record) mesh.domainPoints[b.id] = {b.face, b.domain};
+    }
+  });
 
   // Face interiors through evaluation plans: the plans first (each distinct
   // key built once, itself in parallel), then tiles of samples in parallel.
@@ -362,7 +405,7 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
   const Vec3 origin = surface.origin(); // patches evaluate in the surface's own frame
   if (planned) {
     std::size_t total = 0;
-    const std::vector<Tile> tiles = planTiles(surface, r, plans, total, wanted);
+    const std::vector<Tile> tiles = planTiles(surface, layout.faceResolution, plans, total, wanted);
     forEachTile(tiles, total, [&](const Tile &tile) {
       thread_local std::vector<DualVec3> values;
       const Patch &patch = *SurfaceAccess::patch(surface, tile.face);
@@ -391,15 +434,46 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
 
   // Triangles per fan sector (face f, side i): the sectors of a face are
   // independent (their own interior samples, spokes by formula), so even a
-  // single face spreads over the threads; the mesh takes them in order.
+  // single face spreads over the threads. A sector's triangle count is
+  // known from its rows — (b − 1) + r(r − 1) for b samples on its domain
+  // side (zip's count, row by row) — so each writes straight into its
+  // place in the mesh, the faces' sectors in order.
   std::vector<std::pair<int, int>> sectors;
   for (int f = 0; f < faces; ++f)
     if (wanted(f))
       for (int i = 0; i < surface.domainSides(f); ++i) sectors.push_back({f, i});
-  std::vector<std::vector<std::array<std::uint32_t, 3>>> sectorTriangles(sectors.size());
+  std::vector<std::size_t> sectorCount(sectors.size()), faceTriangles(faces, 0);
+  for (std::size_t item = 0; item < sectors.size(); ++item) {
+    const auto [f, i] = sectors[item];
+    const std::size_t r = static_cast<std::size_t>(layout.faceResolution[f]);
+    sectorCount[item] = rows[f][i].size() - 1 + r * (r - 1);
+    faceTriangles[f] += sectorCount[item];
+  }
+  if (only) {
+    // The same topology gives every face the same triangle count; only the
+    // zipping order along sides with T-nodes can move with the curves.
+    for (int f = 0; f < faces; ++f)
+      if (wanted(f))
+        CURVENET_CHECK(faceTriangles[f] == mesh.faceTriangleStart[f + 1] - mesh.faceTriangleStart[f],
+                       "face " + std::to_string(f) + " changed its triangle count");
+  } else {
+    mesh.faceTriangleStart.assign(1, 0);
+    for (int f = 0; f < faces; ++f)
+      mesh.faceTriangleStart.push_back(mesh.faceTriangleStart.back() + static_cast<std::uint32_t>(faceTriangles[f]));
+    mesh.triangles.resize(mesh.faceTriangleStart.back());
+  }
+  std::vector<std::size_t> destination(sectors.size());
+  for (std::size_t item = 0; item < sectors.size(); ++item) {
+    const bool first = item == 0 || sectors[item - 1].first != sectors[item].first;
+    destination[item] = first ? mesh.faceTriangleStart[sectors[item].first] : destination[item - 1] + sectorCount[item - 1];
+  }
+  if (domains) {
+    CURVENET_CHECK(!only, "triangle domain points are recorded for whole tessellations");
+    domains->resize(mesh.triangles.size());
+  }
   parallel::parallelFor(std::size_t{0}, sectors.size(), [&](std::size_t item) {
     const int f = sectors[item].first, i = sectors[item].second; // plain names: the lambdas below capture f
-    const int n = surface.domainSides(f);
+    const int n = surface.domainSides(f), r = layout.faceResolution[f];
     const std::uint32_t base = layout.faceBase[f];
     const std::uint32_t centre = base;
     auto spoke = [&](int side, int k) { // level k ∈ [1, r−1] on the spoke from corner `side` to the centre
@@ -417,8 +491,8 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
       ++placed;
     };
     if (i == 0) place(centre, {0, 0});
-    auto &out = sectorTriangles[item];
-    out.reserve(static_cast<size_t>(r) * r);
+    TriangleSink out{mesh.triangles.data() + destination[item], domains ? domains->data() + destination[item] : nullptr,
+                     sectorCount[item]};
     const Vec2 p0 = surface.domainCorner(f, i), p1 = surface.domainCorner(f, i + 1);
     std::vector<RowPoint> lower = rows[f][i], upper;
     std::uint32_t offset = interiorBase + static_cast<std::uint32_t>(i) * perTriangle;
@@ -439,43 +513,219 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
       zip(lower, upper, out);
       std::swap(lower, upper);
     }
+    CURVENET_CHECK(out.written == sectorCount[item], "face " + std::to_string(f) + " sector " + std::to_string(i) +
+                                                          ": triangle count differs from its rows'");
     if (placed) progress.advance(placed);
-  });
-  // Each face's triangles are its sectors' in order (`sectors` lists a
-  // face's together); each sector is copied to its place in parallel.
-  std::vector<std::size_t> faceTriangles(faces, 0);
-  for (std::size_t item = 0; item < sectors.size(); ++item)
-    faceTriangles[sectors[item].first] += sectorTriangles[item].size();
-  if (only) {
-    // The same topology gives every face the same triangle count; only the
-    // zipping order along sides with T-nodes can move with the curves.
-    for (int f = 0; f < faces; ++f)
-      if (wanted(f))
-        CURVENET_CHECK(faceTriangles[f] == mesh.faceTriangleStart[f + 1] - mesh.faceTriangleStart[f],
-                       "face " + std::to_string(f) + " changed its triangle count");
-  } else {
-    mesh.faceTriangleStart.assign(1, 0);
-    for (int f = 0; f < faces; ++f)
-      mesh.faceTriangleStart.push_back(mesh.faceTriangleStart.back() + static_cast<std::uint32_t>(faceTriangles[f]));
-    mesh.triangles.resize(mesh.faceTriangleStart.back());
-  }
-  std::vector<std::size_t> destination(sectors.size());
-  for (std::size_t item = 0; item < sectors.size(); ++item) {
-    const bool first = item == 0 || sectors[item - 1].first != sectors[item].first;
-    destination[item] = first ? mesh.faceTriangleStart[sectors[item].first]
-                              : destination[item - 1] + sectorTriangles[item - 1].size();
-  }
-  parallel::parallelFor(std::size_t{0}, sectors.size(), [&](std::size_t item) {
-    std::copy(sectorTriangles[item].begin(), sectorTriangles[item].end(), mesh.triangles.begin() + destination[item]);
   });
   if (only) return;
   progress.finish();
 }
+
+/// Per face: the largest chordal deviation of its triangles — the exact
+/// surface at the domain midpoints of their edges and at their centroids
+/// against the mesh's linear interpolation there — and the largest angle
+/// (radians) between the normals at the two ends of their edges.
+struct FaceAccuracy {
+  std::vector<double> deviation, angle;
+};
+
+FaceAccuracy measureAccuracy(const Surface &surface, const Mesh &mesh, const std::vector<std::array<Vec2, 3>> &domains) {
+  const int faces = surface.faceCount();
+  FaceAccuracy accuracy{std::vector<double>(faces, 0.0), std::vector<double>(faces, 0.0)};
+  parallel::parallelFor(0, faces, [&](int f) {
+    const std::uint32_t first = mesh.faceTriangleStart[f], last = mesh.faceTriangleStart[f + 1];
+    // Per triangle: the midpoints of edges (0, 1), (1, 2), (2, 0), then the centroid.
+    std::vector<Vec2> at;
+    at.reserve(4 * static_cast<std::size_t>(last - first));
+    for (std::uint32_t t = first; t < last; ++t) {
+      const auto &d = domains[t];
+      at.push_back((d[0] + d[1]) * 0.5), at.push_back((d[1] + d[2]) * 0.5), at.push_back((d[2] + d[0]) * 0.5);
+      at.push_back((d[0] + d[1] + d[2]) * (1.0 / 3));
+    }
+    std::vector<Vec3> exact(at.size());
+    surface.evaluatePositions(f, at, exact);
+    double deviation = 0, angle = 0;
+    for (std::uint32_t t = first; t < last; ++t) {
+      const auto &tri = mesh.triangles[t];
+      const Vec3 *e = &exact[4 * static_cast<std::size_t>(t - first)];
+      const Vec3 &a = mesh.positions[tri[0]], &b = mesh.positions[tri[1]], &c = mesh.positions[tri[2]];
+      deviation = std::max({deviation, norm(e[0] - (a + b) * 0.5), norm(e[1] - (b + c) * 0.5),
+                            norm(e[2] - (c + a) * 0.5), norm(e[3] - (a + b + c) * (1.0 / 3))});
+      for (int k = 0; k < 3; ++k)
+        angle = std::max(angle, angleBetween(mesh.normals[tri[k]], mesh.normals[tri[(k + 1) % 3]]));
+    }
+    accuracy.deviation[f] = deviation, accuracy.angle[f] = angle;
+  });
+  return accuracy;
+}
+
+/// Triangles of the uniform tessellation at `resolution`, counted from its
+/// boundary rows: a fan sector whose domain side carries b samples has
+/// (b − 1) + r(r − 1) triangles (tessellateInto's rows zipped).
+std::size_t uniformTriangles(const Surface &surface, int resolution) {
+  const Layout layout = makeLayout(surface, resolution);
+  std::size_t count = 0;
+  const std::size_t r = static_cast<std::size_t>(resolution);
+  for (int f = 0; f < surface.faceCount(); ++f)
+    for (const std::vector<RowPoint> &row : boundaryRows(surface, layout, f)) count += row.size() - 1 + r * (r - 1);
+  return count;
+}
+
+/// Each segment's intervals: the largest resolution of the faces along it,
+/// so that both of them see it sampled at least as finely as they need.
+std::vector<int> segmentIntervalsFor(const Surface &surface, const std::vector<int> &faceResolution) {
+  const auto &segments = surface.network().segments();
+  std::vector<int> intervals(segments.size(), 1);
+  for (std::size_t e = 0; e < segments.size(); ++e)
+    for (int f : segments[e].faces)
+      if (f >= 0) intervals[e] = std::max(intervals[e], faceResolution[f]);
+  return intervals;
+}
+
+void checkLayoutSize(const Layout &layout) {
+  if (layout.vertexCount >= std::numeric_limits<std::uint32_t>::max() / 2)
+    throw InputError("", "tolerance", "needs more vertices than a mesh's 32-bit indices can number");
+}
+
+/// The tessellation to options.tolerance (see TessellationOptions): every
+/// face starts at a probe resolution; each pass measures every face
+/// (measureAccuracy) and resolves the faces that miss the tolerance or the
+/// angle, with the chordal deviation taken to fall as 1/r² and the angle as
+/// 1/r (the first pass may also coarsen faces that need less).
+Mesh tessellateToTolerance(const Surface &surface, const TessellationOptions &options, TessellationReport *report) {
+  if (!(options.tolerance > 0 && options.tolerance < 1))
+    throw InputError("", "tolerance", "must lie in (0, 1) (relative to the diagonal)");
+  if (!(options.angle >= 0 && options.angle < 90)) throw InputError("", "angle", "must lie in [0, 90) degrees");
+  const double target = options.tolerance * surface.network().diagonal();
+  const double angleLimit = options.angle * std::numbers::pi / 180;
+  constexpr int kProbe = 8, kMaxResolution = 4096, kMaxPasses = 8;
+  constexpr double kMargin = 0.92; // aim a little below the limits, so that most faces meet them at the first estimate
+  const int faces = surface.faceCount();
+  std::vector<int> resolution(static_cast<std::size_t>(faces), kProbe);
+  TessellationOptions pass = options;
+  pass.progress = nullptr; // several passes: no single fraction to report
+  Mesh mesh;
+  std::vector<std::array<Vec2, 3>> domains;
+  FaceAccuracy accuracy;
+  int passes = 0;
+  for (;;) {
+    const Layout layout = makeLayout(surface, resolution, segmentIntervalsFor(surface, resolution));
+    checkLayoutSize(layout);
+    tessellateInto(surface, pass, layout, nullptr, mesh, &domains);
+    accuracy = measureAccuracy(surface, mesh, domains);
+    ++passes;
+    bool changed = false;
+    for (int f = 0; f < faces; ++f) {
+      const bool missed = accuracy.deviation[f] > target || (angleLimit > 0 && accuracy.angle[f] > angleLimit);
+      if (passes > 1 && !missed) continue;
+      double factor = std::sqrt(accuracy.deviation[f] / (kMargin * target));
+      if (angleLimit > 0) factor = std::max(factor, accuracy.angle[f] / (kMargin * angleLimit));
+      int wanted = static_cast<int>(std::ceil(resolution[f] * factor));
+      if (missed) wanted = std::max(wanted, resolution[f] + 1);
+      wanted = std::clamp(wanted, 1, kMaxResolution);
+      if (wanted != resolution[f]) resolution[f] = wanted, changed = true;
+    }
+    if (!changed || passes == kMaxPasses) break;
+  }
+  // Trimming: a face that meets the limits with room to spare tries one
+  // resolution less where the same laws predict it still meets them; the
+  // faces that then miss go back (their segments with them: a finer
+  // segment only brings the neighbours' boundary rows closer).
+  auto predictedToMeet = [&](int f, int coarser) {
+    const double ratio = static_cast<double>(resolution[f]) / coarser;
+    return accuracy.deviation[f] * ratio * ratio <= target &&
+           (angleLimit == 0 || accuracy.angle[f] * ratio <= angleLimit);
+  };
+  for (int trim = 0; trim < 2 && passes < kMaxPasses + 2; ++trim) {
+    const bool met = std::all_of(accuracy.deviation.begin(), accuracy.deviation.end(),
+                                 [&](double d) { return d <= target; });
+    if (!met) break;
+    std::vector<int> trimmed = resolution;
+    for (int f = 0; f < faces; ++f)
+      if (resolution[f] > 1 && predictedToMeet(f, resolution[f] - 1)) trimmed[f] = resolution[f] - 1;
+    if (trimmed == resolution) break;
+    Mesh candidate;
+    std::vector<std::array<Vec2, 3>> candidateDomains;
+    const Layout layout = makeLayout(surface, trimmed, segmentIntervalsFor(surface, trimmed));
+    tessellateInto(surface, pass, layout, nullptr, candidate, &candidateDomains);
+    FaceAccuracy candidateAccuracy = measureAccuracy(surface, candidate, candidateDomains);
+    ++passes;
+    bool reverted = false;
+    for (int f = 0; f < faces; ++f)
+      if (candidateAccuracy.deviation[f] > target || (angleLimit > 0 && candidateAccuracy.angle[f] > angleLimit))
+        trimmed[f] = resolution[f], reverted = true;
+    resolution = trimmed;
+    if (!reverted) {
+      mesh = std::move(candidate), domains = std::move(candidateDomains), accuracy = std::move(candidateAccuracy);
+      continue;
+    }
+    // The accepted resolutions, tessellated and measured once more.
+    const Layout accepted = makeLayout(surface, resolution, segmentIntervalsFor(surface, resolution));
+    tessellateInto(surface, pass, accepted, nullptr, mesh, &domains);
+    accuracy = measureAccuracy(surface, mesh, domains);
+    ++passes;
+  }
+  if (report) {
+    TessellationReport &r = *report;
+    r = {};
+    r.diagonal = surface.network().diagonal();
+    r.deviation = *std::max_element(accuracy.deviation.begin(), accuracy.deviation.end()) / r.diagonal;
+    r.angle = *std::max_element(accuracy.angle.begin(), accuracy.angle.end()) * 180 / std::numbers::pi;
+    r.triangles = mesh.triangles.size();
+    r.minResolution = *std::min_element(resolution.begin(), resolution.end());
+    r.maxResolution = *std::max_element(resolution.begin(), resolution.end());
+    r.passes = passes;
+    // The uniform comparison: the smallest uniform resolution whose mesh,
+    // measured the same way, meets the same limits (bisection between one
+    // and the largest face resolution, which is checked first).
+    auto meets = [&](int uniform) {
+      Mesh m;
+      std::vector<std::array<Vec2, 3>> d;
+      const Layout layout = makeLayout(surface, uniform);
+      checkLayoutSize(layout);
+      tessellateInto(surface, pass, layout, nullptr, m, &d);
+      const FaceAccuracy a = measureAccuracy(surface, m, d);
+      for (int f = 0; f < faces; ++f)
+        if (a.deviation[f] > target || (angleLimit > 0 && a.angle[f] > angleLimit)) return false;
+      return true;
+    };
+    int high = r.maxResolution;
+    while (!meets(high) && high < kMaxResolution) high = std::min(kMaxResolution, high + std::max(1, high / 4));
+    int low = 0; // does not meet (resolution 0 makes no mesh)
+    while (high - low > 1) {
+      const int middle = (low + high) / 2;
+      (middle >= 1 && meets(middle) ? high : low) = middle;
+    }
+    r.uniformResolution = high;
+    r.uniformTriangles = uniformTriangles(surface, high);
+  }
+  return mesh;
+}
+
 } // namespace
 
 Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
+  if (options.tolerance > 0) return tessellateToTolerance(surface, options, nullptr);
+  checkResolution(surface, options.resolution);
   Mesh mesh;
-  tessellateInto(surface, options, nullptr, mesh);
+  tessellateInto(surface, options, makeLayout(surface, options.resolution), nullptr, mesh);
+  return mesh;
+}
+
+Mesh tessellate(const Surface &surface, const TessellationOptions &options, TessellationReport &report) {
+  if (options.tolerance > 0) return tessellateToTolerance(surface, options, &report);
+  checkResolution(surface, options.resolution);
+  Mesh mesh;
+  std::vector<std::array<Vec2, 3>> domains;
+  tessellateInto(surface, options, makeLayout(surface, options.resolution), nullptr, mesh, &domains);
+  const FaceAccuracy accuracy = measureAccuracy(surface, mesh, domains);
+  report = {};
+  report.diagonal = surface.network().diagonal();
+  report.deviation = *std::max_element(accuracy.deviation.begin(), accuracy.deviation.end()) / report.diagonal;
+  report.angle = *std::max_element(accuracy.angle.begin(), accuracy.angle.end()) * 180 / std::numbers::pi;
+  report.triangles = report.uniformTriangles = mesh.triangles.size();
+  report.minResolution = report.maxResolution = report.uniformResolution = options.resolution;
+  report.passes = 1;
   return mesh;
 }
 
@@ -486,7 +736,10 @@ void retessellateFaces(const Surface &surface, std::span<const int> faces, Mesh 
     if (f < 0 || f >= surface.faceCount()) throw InputError("", "face " + std::to_string(f), "no such face");
     only[f] = 1;
   }
-  tessellateInto(surface, options, &only, mesh);
+  if (options.tolerance > 0)
+    throw InputError("", "tolerance", "a mesh made to a tolerance is tessellated afresh after an edit, not updated");
+  checkResolution(surface, options.resolution);
+  tessellateInto(surface, options, makeLayout(surface, options.resolution), &only, mesh);
 }
 
 } // namespace v1
