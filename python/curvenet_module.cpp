@@ -1,4 +1,4 @@
-// The Python module `curvenet` (DESIGN.md §8): the Model of
+// The Python module `curvenet` (docs/design.md §8): the Model of
 // curvenet/curvenet.hpp with numpy arrays in and out.
 //
 // Arrays and copies. Domain points (N, 2), positions (N, 3) and control

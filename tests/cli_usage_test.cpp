@@ -1,4 +1,4 @@
-// The command line as a new user meets it (DESIGN.md §6): names and numbers
+// The command line as a new user meets it (docs/design.md §6): names and numbers
 // it does not accept get one short line naming the word, help shows every
 // scheme and default, `-` is standard input or output, limits are checked
 // before any work, and every kind of mesh file can be read and shown.

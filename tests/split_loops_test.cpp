@@ -1,4 +1,4 @@
-// Connection curves for unevenly spaced and many-sided loops (paper 000
+// Connection curves for unevenly spaced and many-sided loops ([SV14]
 // Sec. 5.2, Fig. 9). Loops of 9–16 sides inscribed in an ellipse and the
 // uneven loops (corners crowded on 100° of the turn) lie on the bowl
 // z = 0.25x² + 0.15y², so the composite's distance to the bowl measures its

@@ -246,8 +246,9 @@ def test_per_face_schemes_and_exact_second_derivatives():
     step = np.array([h, 0.0])
     du_plus, du_minus = model.evaluate(0, uv + step).du, model.evaluate(0, uv - step).du
     assert np.allclose(second.duu, (du_plus - du_minus) / (2 * h), atol=1e-5 * np.abs(second.duu).max())
-    # The fast path (ribbon tables) agrees with the pointwise evaluation to ~1e-14.
-    assert np.array_equal(second.points, model.evaluate(0, uv).points)
+    # Second order is evaluated point by point; batches of first order take the
+    # ribbon tables, which agree with it to ~1e-14 of the size (curvenet.hpp).
+    assert np.allclose(second.points, model.evaluate(0, uv).points, rtol=0, atol=1e-12)
     assert np.allclose(second.points, model.evaluate_positions(0, uv), rtol=0, atol=1e-12)
 
 

@@ -240,7 +240,7 @@ struct TweakResult {
 TweakResult tweakNetwork(const Network &network, const TweakOptions &options = {});
 
 // ---------------------------------------------------------------------------
-// Vertex repair (paper 000 Sec. 2: "prior to generating our surface model, we
+// Vertex repair ([SV14] Sec. 2: "prior to generating our surface model, we
 // need to ensure that the defining network is G² … and in special cases
 // slightly adjust some curves")
 // ---------------------------------------------------------------------------

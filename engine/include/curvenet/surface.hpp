@@ -157,7 +157,7 @@ enum class MasterFaces {
 
 /// Whether the surface is built on the curves as given or on the curves
 /// repaired at the vertices that fail (repairNetwork, curvenet/analysis.hpp;
-/// paper 000 Sec. 2).
+/// [SV14] Sec. 2).
 enum class CurveHandling {
   /// The default. For every transfinite scheme the end tangents at a vertex
   /// whose tangents leave their plane are turned into it (without a common

@@ -50,7 +50,7 @@ struct BoundedCurvatureFit {
 inline constexpr double kUndeterminedModeRatio = 0.1;
 
 /// Two curves whose lines meet at less than asin of this (15°) are nearly
-/// parallel: the n = 2 rules of paper 000 divide by sin² of that angle. The
+/// parallel: the n = 2 rules of [SV14] divide by sin² of that angle. The
 /// built-ins' two-curve vertices meet at 36.9° or more.
 inline constexpr double kNearlyParallelSine = 0.2588;
 
@@ -63,7 +63,7 @@ inline constexpr double kNearlyParallelSine = 0.2588;
 /// curves (saddle-nodes); a near-X fit goes beyond it by orders of magnitude.
 double principalCurvatureBound(std::span<const double> ks);
 
-/// fitCurvature (paper 000 Sec. 2), kept where it is well conditioned: with
+/// fitCurvature ([SV14] Sec. 2), kept where it is well conditioned: with
 /// three or more curves every mode above kUndeterminedModeRatio and the
 /// tensor within principalCurvatureBound; with two curves within the bound
 /// or not nearly parallel (the paper's n = 2 rule is a choice of the free

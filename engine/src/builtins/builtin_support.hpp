@@ -58,7 +58,7 @@ BuiltinData concaveL();
 /// outer corner).
 BuiltinData ring(int holeSides = 4);
 /// A loop of `sides` sides with all corners but two crowded on 100° of its
-/// turn (the built-in `uneven-loop`: 10; paper 000 Fig. 9), split by
+/// turn (the built-in `uneven-loop`: 10; [SV14] Fig. 9), split by
 /// connection curves.
 BuiltinData unevenLoop(int sides = 10);
 /// A loop of `sides` sides inscribed in an ellipse (the built-in
