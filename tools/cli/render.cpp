@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <algorithm>
 #include <cctype>
 #include <numbers>
@@ -12,6 +14,7 @@
 #include "curvenet/curvature.hpp"
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
+#include "curvenet/sketch.hpp"
 #include "curvenet/surface.hpp"
 #include "curvenet/tessellate.hpp"
 #include "progress.hpp"
@@ -21,11 +24,18 @@ namespace curvenet::cli {
 
 namespace {
 
-/// Whether a render INPUT names a mesh file (rendered as it is) rather than a network.
+/// Whether a render INPUT names a mesh file (rendered as it is) rather than a
+/// network. An OBJ of polylines and no faces is a curve graph: a network.
 bool isMeshFile(const std::string &input) {
   std::string ext = std::filesystem::path(input).extension().string();
   for (char &c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".obj" || ext == ".ply" || ext == ".off" || ext == ".stl";
+  if (ext == ".obj") {
+    std::ifstream in(input, std::ios::binary);
+    if (!in) return true; // the mesh reader names the file that cannot be read
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return !objIsCurveGraph(text);
+  }
+  return ext == ".ply" || ext == ".off" || ext == ".stl";
 }
 
 /// Unit vertex normals weighted by the triangles' areas (a mesh file carries

@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
+#include "curvenet/sketch.hpp"
 #include "curvenet/surface.hpp"
 
 namespace curvenet::cli {
@@ -37,7 +38,9 @@ void writeMeshAs(const Mesh &mesh, const std::string &format, std::ostream &out)
 
 bool standardInputIsNetwork() {
   const std::string word = firstWord(readStandardInput());
-  return word.starts_with("{") || (!word.empty() && std::isdigit(static_cast<unsigned char>(word[0])));
+  const std::string &text = readStandardInput();
+  return word.starts_with("{") || (!word.empty() && std::isdigit(static_cast<unsigned char>(word[0]))) ||
+         objIsCurveGraph(text);
 }
 
 NetworkDescription loadNetworkArgument(const std::string &input) {
@@ -49,6 +52,9 @@ NetworkDescription loadNetworkArgument(const std::string &input) {
     if (network.name.empty()) network.name = "stdin";
     return network;
   }
+  // An OBJ of polylines (`l` elements, no `f`) is a curve graph: its faces are found.
+  if (objIsCurveGraph(text))
+    return networkFromCurveGraph(parseObjCurveGraph(text, kStandardInput), {}, kStandardInput).description;
   return parseLop(text, kStandardInput);
 }
 
