@@ -308,28 +308,21 @@ std::size_t estimateMeshVertices(const Surface &surface, int resolution) {
 }
 
 namespace {
-/// Fills `mesh` with the tessellation of `surface` (see the header), or —
-/// with `only` — re-evaluates only the faces f with only[f] set in a mesh
-/// that already holds the whole tessellation of a surface of the same
-/// topology: their interior samples, their boundary samples and the normals
-/// those faces own, and their triangles. Everything is computed exactly as a
-/// full run computes it, so the result equals a full tessellation.
-/// `layout` gives every face's resolution and every segment's intervals;
-/// with `domains`, every triangle's domain points (in its face's domain)
-/// go there, in triangle order.
-void tessellateInto(const Surface &surface, const TessellationOptions &options, const Layout &layout,
-                    const std::vector<char> *only, Mesh &mesh, std::vector<std::array<Vec2, 3>> *domains = nullptr) {
-  const Network &net = surface.network();
-  const int faces = surface.faceCount();
-  auto wanted = [&](int f) { return !only || (*only)[f]; };
+/// The faces one tessellation pass writes: all of them, or those with only[f] set.
+struct FaceSelection {
+  const std::vector<char> *only = nullptr;
+  bool operator()(int f) const { return !only || (*only)[f]; }
+};
 
-  std::optional<tbb::global_control> limit;
-  if (options.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, options.threads);
+/// Every face's boundary rows, one list per side, in parallel.
+using BoundaryRows = std::vector<std::vector<std::vector<RowPoint>>>;
 
-  const bool record = options.recordDomainPoints;
-  if (only) {
+/// Sizes `mesh` for `layout` (a full pass) or checks that it already has
+/// that layout (a pass over some faces).
+void prepareMesh(const Surface &surface, const Layout &layout, bool partial, bool record, Mesh &mesh) {
+  if (partial) {
     CURVENET_CHECK(mesh.positions.size() == layout.vertexCount && mesh.normals.size() == layout.vertexCount &&
-                       mesh.faceTriangleStart.size() == static_cast<std::size_t>(faces) + 1 &&
+                       mesh.faceTriangleStart.size() == static_cast<std::size_t>(surface.faceCount()) + 1 &&
                        mesh.domainPoints.size() == (record ? layout.vertexCount : 0),
                    "re-tessellation of a mesh with another layout, resolution or domain-point setting");
   } else {
@@ -337,15 +330,11 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
     mesh.normals.resize(layout.vertexCount);
     if (record) mesh.domainPoints.resize(layout.vertexCount);
   }
-  std::uint64_t interiorSamples = 0;
-  for (int f = 0; f < faces; ++f)
-    if (wanted(f)) interiorSamples += faceInteriorCount(surface.domainSides(f), layout.faceResolution[f]);
-  ProgressCounter progress(options.progress, interiorSamples);
-  std::vector<std::vector<std::vector<RowPoint>>> rows(faces);
-  parallel::parallelFor(0, faces, [&](int f) { rows[f] = boundaryRows(surface, layout, f); });
+}
 
-  // Boundary positions come from the curves themselves; their normals from
-  // the lowest-numbered face that shows them (deterministic).
+/// Boundary positions come from the curves themselves: vertices, then the
+/// samples of every segment a selected face borders.
+void writeBoundaryPositions(const Network &net, const Layout &layout, const FaceSelection &wanted, Mesh &mesh) {
   for (size_t v = 0; v < net.vertices().size(); ++v) mesh.positions[v] = net.vertices()[v].position;
   for (size_t e = 0; e < net.segments().size(); ++e) {
     const auto &adjacent = net.segments()[e].faces;
@@ -354,8 +343,13 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
       mesh.positions[segmentSampleId(net, layout, static_cast<int>(e), j)] =
           net.segments()[e].curve.point(double(j) / layout.segmentIntervals[e]);
   }
-  // Owners first (in face order), then the owners' normals in parallel:
-  // each point is evaluated by one fixed face, whatever the thread count.
+}
+
+/// Boundary normals from the lowest-numbered face that shows each point
+/// (deterministic): owners first, in face order, then the owners' normals in
+/// parallel, each point evaluated by one fixed face whatever the thread count.
+void evaluateBoundaryNormals(const Surface &surface, const Layout &layout, const BoundaryRows &rows,
+                             const FaceSelection &wanted, bool record, Mesh &mesh) {
   struct BoundaryNormal {
     std::uint32_t id;
     int face;
@@ -364,7 +358,7 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
   std::vector<BoundaryNormal> boundary;
   {
     std::vector<char> hasNormal(layout.vertexCount, 0);
-    for (int f = 0; f < faces; ++f)
+    for (int f = 0; f < surface.faceCount(); ++f)
       for (const auto &row : rows[f])
         for (const RowPoint &p : row)
           if (!hasNormal[p.id]) {
@@ -397,59 +391,68 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
       if (record) mesh.domainPoints[b.id] = {b.face, b.domain};
     }
   });
+}
 
-  // Face interiors through evaluation plans: the plans first (each distinct
-  // key built once, itself in parallel), then tiles of samples in parallel.
-  std::vector<std::shared_ptr<const EvaluationPlan>> plans(faces);
-  const bool planned = options.usePlans && faces > 0 && SurfaceAccess::patch(surface, 0) != nullptr;
+/// Face interiors through evaluation plans: the plans first (each distinct
+/// key built once, itself in parallel), then tiles of samples in parallel.
+void evaluatePlannedInteriors(const Surface &surface, const Layout &layout, const FaceSelection &wanted, bool record,
+                              ProgressCounter &progress, Mesh &mesh) {
+  std::vector<std::shared_ptr<const EvaluationPlan>> plans(surface.faceCount());
   const Vec3 origin = surface.origin(); // patches evaluate in the surface's own frame
-  if (planned) {
-    std::size_t total = 0;
-    const std::vector<Tile> tiles = planTiles(surface, layout.faceResolution, plans, total, wanted);
-    forEachTile(tiles, total, [&](const Tile &tile) {
-      thread_local std::vector<DualVec3> values;
-      const Patch &patch = *SurfaceAccess::patch(surface, tile.face);
-      const EvaluationPlan &plan = *plans[tile.face];
-      const std::size_t count = tile.samples.count;
-      values.resize(count);
-      for (int m = 0; m < tile.samples.members; ++m) {
-        const std::size_t first = tile.samples.first + m * tile.samples.stride;
-        patch.evaluatePlanned(plan, first, count, values.data());
-        for (std::size_t k = 0; k < count; ++k) {
-          const std::uint32_t id = layout.faceBase[tile.face] + static_cast<std::uint32_t>(first + k);
-          const DualVec3 &p = values[k];
-          const Vec2 uv = plan.samples()[first + k];
-          Vec3 normal = cross(p.du, p.dv);
-          // Degenerate only where Surface::evaluate takes the limit from inside.
-          if (squaredNorm(normal) <= 1e-24 * squaredNorm(p.du) * squaredNorm(p.dv))
-            normal = surface.evaluate(tile.face, uv).normal;
-          mesh.positions[id] = p.v + origin;
-          mesh.normals[id] = normalized(normal);
-          if (record) mesh.domainPoints[id] = {tile.face, uv};
-        }
-        progress.advance(count);
+  std::size_t total = 0;
+  const std::vector<Tile> tiles = planTiles(surface, layout.faceResolution, plans, total, wanted);
+  forEachTile(tiles, total, [&](const Tile &tile) {
+    thread_local std::vector<DualVec3> values;
+    const Patch &patch = *SurfaceAccess::patch(surface, tile.face);
+    const EvaluationPlan &plan = *plans[tile.face];
+    const std::size_t count = tile.samples.count;
+    values.resize(count);
+    for (int m = 0; m < tile.samples.members; ++m) {
+      const std::size_t first = tile.samples.first + m * tile.samples.stride;
+      patch.evaluatePlanned(plan, first, count, values.data());
+      for (std::size_t k = 0; k < count; ++k) {
+        const std::uint32_t id = layout.faceBase[tile.face] + static_cast<std::uint32_t>(first + k);
+        const DualVec3 &p = values[k];
+        const Vec2 uv = plan.samples()[first + k];
+        Vec3 normal = cross(p.du, p.dv);
+        // Degenerate only where Surface::evaluate takes the limit from inside.
+        if (squaredNorm(normal) <= 1e-24 * squaredNorm(p.du) * squaredNorm(p.dv))
+          normal = surface.evaluate(tile.face, uv).normal;
+        mesh.positions[id] = p.v + origin;
+        mesh.normals[id] = normalized(normal);
+        if (record) mesh.domainPoints[id] = {tile.face, uv};
       }
-    });
-  }
+      progress.advance(count);
+    }
+  });
+}
 
-  // Triangles per fan sector (face f, side i): the sectors of a face are
-  // independent (their own interior samples, spokes by formula), so even a
-  // single face spreads over the threads. A sector's triangle count is
-  // known from its rows — (b − 1) + r(r − 1) for b samples on its domain
-  // side (zip's count, row by row) — so each writes straight into its
-  // place in the mesh, the faces' sectors in order.
+/// The fan sectors (face f, side i) of the selected faces, each with its
+/// triangle count and its first triangle in the mesh. A sector's count is
+/// known from its rows — (b − 1) + r(r − 1) for b samples on its domain side
+/// (zip's count, row by row) — so each writes straight into its place, the
+/// faces' sectors in order. A full pass sizes the mesh's triangles here.
+struct SectorLayout {
   std::vector<std::pair<int, int>> sectors;
+  std::vector<std::size_t> count, destination;
+};
+
+SectorLayout layOutSectors(const Surface &surface, const Layout &layout, const BoundaryRows &rows,
+                           const FaceSelection &wanted, bool partial, Mesh &mesh) {
+  const int faces = surface.faceCount();
+  SectorLayout out;
   for (int f = 0; f < faces; ++f)
     if (wanted(f))
-      for (int i = 0; i < surface.domainSides(f); ++i) sectors.push_back({f, i});
-  std::vector<std::size_t> sectorCount(sectors.size()), faceTriangles(faces, 0);
-  for (std::size_t item = 0; item < sectors.size(); ++item) {
-    const auto [f, i] = sectors[item];
+      for (int i = 0; i < surface.domainSides(f); ++i) out.sectors.push_back({f, i});
+  out.count.resize(out.sectors.size());
+  std::vector<std::size_t> faceTriangles(faces, 0);
+  for (std::size_t item = 0; item < out.sectors.size(); ++item) {
+    const auto [f, i] = out.sectors[item];
     const std::size_t r = static_cast<std::size_t>(layout.faceResolution[f]);
-    sectorCount[item] = rows[f][i].size() - 1 + r * (r - 1);
-    faceTriangles[f] += sectorCount[item];
+    out.count[item] = rows[f][i].size() - 1 + r * (r - 1);
+    faceTriangles[f] += out.count[item];
   }
-  if (only) {
+  if (partial) {
     // The same topology gives every face the same triangle count; only the
     // zipping order along sides with T-nodes can move with the curves.
     for (int f = 0; f < faces; ++f)
@@ -462,62 +465,110 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
       mesh.faceTriangleStart.push_back(mesh.faceTriangleStart.back() + static_cast<std::uint32_t>(faceTriangles[f]));
     mesh.triangles.resize(mesh.faceTriangleStart.back());
   }
-  std::vector<std::size_t> destination(sectors.size());
-  for (std::size_t item = 0; item < sectors.size(); ++item) {
-    const bool first = item == 0 || sectors[item - 1].first != sectors[item].first;
-    destination[item] = first ? mesh.faceTriangleStart[sectors[item].first] : destination[item - 1] + sectorCount[item - 1];
+  out.destination.resize(out.sectors.size());
+  for (std::size_t item = 0; item < out.sectors.size(); ++item) {
+    const bool first = item == 0 || out.sectors[item - 1].first != out.sectors[item].first;
+    out.destination[item] =
+        first ? mesh.faceTriangleStart[out.sectors[item].first] : out.destination[item - 1] + out.count[item - 1];
   }
+  return out;
+}
+
+/// Triangles of fan sector `item`, row by row from its boundary side to the
+/// centre; without plans also the sector's interior samples (evaluated point
+/// by point, and counted in `progress`).
+void zipSector(const Surface &surface, const Layout &layout, const BoundaryRows &rows, const SectorLayout &sectors,
+               std::size_t item, bool planned, bool record, ProgressCounter &progress, Mesh &mesh,
+               std::vector<std::array<Vec2, 3>> *domains) {
+  const int f = sectors.sectors[item].first, i = sectors.sectors[item].second; // plain names: the lambdas capture f
+  const int n = surface.domainSides(f), r = layout.faceResolution[f];
+  const std::uint32_t base = layout.faceBase[f];
+  const std::uint32_t centre = base;
+  auto spoke = [&](int side, int k) { // level k ∈ [1, r−1] on the spoke from corner `side` to the centre
+    return base + 1 + static_cast<std::uint32_t>(((side % n + n) % n) * (r - 1) + (k - 1));
+  };
+  const std::uint32_t interiorBase = base + 1 + static_cast<std::uint32_t>(n * (r - 1));
+  const std::uint32_t perTriangle = static_cast<std::uint32_t>((r - 1) * (r - 2) / 2);
+  std::size_t placed = 0;
+  auto place = [&](std::uint32_t id, const Vec2 &uv) {
+    if (planned) return; // evaluated through the plan
+    const SurfacePoint p = surface.evaluate(f, uv);
+    mesh.positions[id] = p.point;
+    mesh.normals[id] = p.normal;
+    if (record) mesh.domainPoints[id] = {f, uv};
+    ++placed;
+  };
+  if (i == 0) place(centre, {0, 0});
+  const std::size_t destination = sectors.destination[item];
+  TriangleSink out{mesh.triangles.data() + destination, domains ? domains->data() + destination : nullptr,
+                   sectors.count[item]};
+  const Vec2 p0 = surface.domainCorner(f, i), p1 = surface.domainCorner(f, i + 1);
+  std::vector<RowPoint> lower = rows[f][i], upper;
+  std::uint32_t offset = interiorBase + static_cast<std::uint32_t>(i) * perTriangle;
+  for (int k = 1; k <= r; ++k) {
+    upper.clear();
+    if (k == r) {
+      upper.push_back({centre, 0.0, {0, 0}});
+    } else {
+      const Vec2 a = p0 * (1.0 - double(k) / r), b = p1 * (1.0 - double(k) / r);
+      const int m = r - k;
+      for (int j = 0; j <= m; ++j) {
+        const std::uint32_t id = j == 0 ? spoke(i, k) : (j == m ? spoke(i + 1, k) : offset++);
+        const Vec2 uv = a + (b - a) * (double(j) / m);
+        if (j < m) place(id, uv); // the spoke at j = m belongs to the next fan triangle
+        upper.push_back({id, double(j) / m, uv});
+      }
+    }
+    zip(lower, upper, out);
+    std::swap(lower, upper);
+  }
+  CURVENET_CHECK(out.written == sectors.count[item], "face " + std::to_string(f) + " sector " + std::to_string(i) +
+                                                         ": triangle count differs from its rows'");
+  if (placed) progress.advance(placed);
+}
+
+/// Fills `mesh` with the tessellation of `surface` (see the header), or —
+/// with `only` — re-evaluates only the faces f with only[f] set in a mesh
+/// that already holds the whole tessellation of a surface of the same
+/// topology: their interior samples, their boundary samples and the normals
+/// those faces own, and their triangles. Everything is computed exactly as a
+/// full run computes it, so the result equals a full tessellation.
+/// `layout` gives every face's resolution and every segment's intervals;
+/// with `domains`, every triangle's domain points (in its face's domain)
+/// go there, in triangle order.
+void tessellateInto(const Surface &surface, const TessellationOptions &options, const Layout &layout,
+                    const std::vector<char> *only, Mesh &mesh, std::vector<std::array<Vec2, 3>> *domains = nullptr) {
+  const int faces = surface.faceCount();
+  const FaceSelection wanted{only};
+  const bool partial = only != nullptr, record = options.recordDomainPoints;
+  std::optional<tbb::global_control> limit;
+  if (options.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, options.threads);
+
+  prepareMesh(surface, layout, partial, record, mesh);
+  std::uint64_t interiorSamples = 0;
+  for (int f = 0; f < faces; ++f)
+    if (wanted(f)) interiorSamples += faceInteriorCount(surface.domainSides(f), layout.faceResolution[f]);
+  ProgressCounter progress(options.progress, interiorSamples);
+  BoundaryRows rows(faces);
+  parallel::parallelFor(0, faces, [&](int f) { rows[f] = boundaryRows(surface, layout, f); });
+
+  writeBoundaryPositions(surface.network(), layout, wanted, mesh);
+  evaluateBoundaryNormals(surface, layout, rows, wanted, record, mesh);
+  const bool planned = options.usePlans && faces > 0 && SurfaceAccess::patch(surface, 0) != nullptr;
+  if (planned) evaluatePlannedInteriors(surface, layout, wanted, record, progress, mesh);
+
+  // Triangles per fan sector: the sectors of a face are independent (their
+  // own interior samples, spokes by formula), so even a single face spreads
+  // over the threads.
+  const SectorLayout sectors = layOutSectors(surface, layout, rows, wanted, partial, mesh);
   if (domains) {
-    CURVENET_CHECK(!only, "triangle domain points are recorded for whole tessellations");
+    CURVENET_CHECK(!partial, "triangle domain points are recorded for whole tessellations");
     domains->resize(mesh.triangles.size());
   }
-  parallel::parallelFor(std::size_t{0}, sectors.size(), [&](std::size_t item) {
-    const int f = sectors[item].first, i = sectors[item].second; // plain names: the lambdas below capture f
-    const int n = surface.domainSides(f), r = layout.faceResolution[f];
-    const std::uint32_t base = layout.faceBase[f];
-    const std::uint32_t centre = base;
-    auto spoke = [&](int side, int k) { // level k ∈ [1, r−1] on the spoke from corner `side` to the centre
-      return base + 1 + static_cast<std::uint32_t>(((side % n + n) % n) * (r - 1) + (k - 1));
-    };
-    const std::uint32_t interiorBase = base + 1 + static_cast<std::uint32_t>(n * (r - 1));
-    const std::uint32_t perTriangle = static_cast<std::uint32_t>((r - 1) * (r - 2) / 2);
-    std::size_t placed = 0;
-    auto place = [&](std::uint32_t id, const Vec2 &uv) {
-      if (planned) return; // evaluated through the plan above
-      const SurfacePoint p = surface.evaluate(f, uv);
-      mesh.positions[id] = p.point;
-      mesh.normals[id] = p.normal;
-      if (record) mesh.domainPoints[id] = {f, uv};
-      ++placed;
-    };
-    if (i == 0) place(centre, {0, 0});
-    TriangleSink out{mesh.triangles.data() + destination[item], domains ? domains->data() + destination[item] : nullptr,
-                     sectorCount[item]};
-    const Vec2 p0 = surface.domainCorner(f, i), p1 = surface.domainCorner(f, i + 1);
-    std::vector<RowPoint> lower = rows[f][i], upper;
-    std::uint32_t offset = interiorBase + static_cast<std::uint32_t>(i) * perTriangle;
-    for (int k = 1; k <= r; ++k) {
-      upper.clear();
-      if (k == r) {
-        upper.push_back({centre, 0.0, {0, 0}});
-      } else {
-        const Vec2 a = p0 * (1.0 - double(k) / r), b = p1 * (1.0 - double(k) / r);
-        const int m = r - k;
-        for (int j = 0; j <= m; ++j) {
-          const std::uint32_t id = j == 0 ? spoke(i, k) : (j == m ? spoke(i + 1, k) : offset++);
-          const Vec2 uv = a + (b - a) * (double(j) / m);
-          if (j < m) place(id, uv); // the spoke at j = m belongs to the next fan triangle
-          upper.push_back({id, double(j) / m, uv});
-        }
-      }
-      zip(lower, upper, out);
-      std::swap(lower, upper);
-    }
-    CURVENET_CHECK(out.written == sectorCount[item], "face " + std::to_string(f) + " sector " + std::to_string(i) +
-                                                          ": triangle count differs from its rows'");
-    if (placed) progress.advance(placed);
+  parallel::parallelFor(std::size_t{0}, sectors.sectors.size(), [&](std::size_t item) {
+    zipSector(surface, layout, rows, sectors, item, planned, record, progress, mesh, domains);
   });
-  if (only) return;
+  if (partial) return;
   progress.finish();
 }
 
