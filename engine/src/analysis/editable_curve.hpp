@@ -3,9 +3,11 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "curvenet/curve.hpp"
+#include "curvenet/network.hpp"
 
 namespace curvenet {
 inline namespace v1 {
@@ -82,6 +84,30 @@ struct EditableCurve {
     return m <= p - 2;
   }
 };
+
+/// t snapped to a knot of `edit` within 1e-13 of the domain [a, b], as
+/// BSplineCurve::restricted snaps, so the network builder cuts the edited
+/// curve exactly at the knots inserted by an edit.
+inline double snappedToKnot(const EditableCurve &edit, double t, double a, double b) {
+  const double snap = 1e-13 * (b - a);
+  for (double u : edit.U)
+    if (std::abs(u - t) <= snap) return u;
+  return t;
+}
+
+/// Every vertex of `network` on curve `curveIndex` (the ends of its
+/// segments), snapped, sorted and unique: the points an edit at one end must
+/// leave alone.
+inline std::vector<double> pinnedParameters(const Network &network, int curveIndex, const EditableCurve &edit) {
+  const BSplineCurve &original = network.description().curves[curveIndex];
+  std::vector<double> pinned;
+  for (const Segment &seg : network.segments())
+    if (seg.sourceCurve == curveIndex) pinned.push_back(seg.sourceFrom), pinned.push_back(seg.sourceTo);
+  for (double &t : pinned) t = snappedToKnot(edit, t, original.domainStart(), original.domainEnd());
+  std::sort(pinned.begin(), pinned.end());
+  pinned.erase(std::unique(pinned.begin(), pinned.end()), pinned.end());
+  return pinned;
+}
 
 } // namespace v1
 } // namespace curvenet

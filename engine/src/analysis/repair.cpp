@@ -58,19 +58,8 @@ BSplineCurve turnCurve(const Network &network, int curveIndex, std::vector<EndTu
   const BSplineCurve &original = network.description().curves[curveIndex];
   EditableCurve edit(original);
   const double a = original.domainStart(), b = original.domainEnd();
-  std::vector<double> pinned;
-  for (const Segment &seg : network.segments())
-    if (seg.sourceCurve == curveIndex) pinned.push_back(seg.sourceFrom), pinned.push_back(seg.sourceTo);
-  const double snap = 1e-13 * (b - a);
-  auto snapped = [&](double t) {
-    for (double u : edit.U)
-      if (std::abs(u - t) <= snap) return u;
-    return t;
-  };
-  for (double &t : pinned) t = snapped(t);
-  std::sort(pinned.begin(), pinned.end());
-  pinned.erase(std::unique(pinned.begin(), pinned.end()), pinned.end());
-  for (EndTurn &turn : turns) turn.t0 = snapped(turn.t0);
+  const std::vector<double> pinned = pinnedParameters(network, curveIndex, edit);
+  for (EndTurn &turn : turns) turn.t0 = snappedToKnot(edit, turn.t0, a, b);
 
   // A vertex inside the curve becomes a knot of multiplicity p, so that its
   // point and its two neighbours are control points.

@@ -72,21 +72,8 @@ TweakResult tweakNetwork(const Network &network, const TweakOptions &options) {
     const double a = original.domainStart(), b = original.domainEnd();
 
     // Every vertex on this curve: none of them may feel another end's move.
-    std::vector<double> pinned;
-    for (const Segment &seg : network.segments())
-      if (seg.sourceCurve == curveIndex) pinned.push_back(seg.sourceFrom), pinned.push_back(seg.sourceTo);
-    // Snap to existing knots as BSplineCurve::restricted does, so the network
-    // builder cuts the edited curve exactly at the knots inserted here.
-    const double snap = 1e-13 * (b - a);
-    auto snapped = [&](double t) {
-      for (double u : edit.U)
-        if (std::abs(u - t) <= snap) return u;
-      return t;
-    };
-    for (double &t : pinned) t = snapped(t);
-    std::sort(pinned.begin(), pinned.end());
-    pinned.erase(std::unique(pinned.begin(), pinned.end()), pinned.end());
-    for (EndTweak &tw : tweaks) tw.t0 = snapped(tw.t0);
+    const std::vector<double> pinned = pinnedParameters(network, curveIndex, edit);
+    for (EndTweak &tw : tweaks) tw.t0 = snappedToKnot(edit, tw.t0, a, b);
 
     // 1. The vertex becomes a knot of multiplicity p (its point a control point).
     for (const EndTweak &tw : tweaks)

@@ -10,40 +10,16 @@
 
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
+#include "../io/text_tokens.hpp"
 #include "curvenet/sketch.hpp"
 
 namespace curvenet {
 inline namespace v1 {
 namespace {
 
-std::vector<std::string_view> tokens(std::string_view line) {
-  std::vector<std::string_view> out;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    std::size_t j = i;
-    while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
-    if (j > i) out.push_back(line.substr(i, j - i));
-    i = j;
-  }
-  return out;
-}
-
-double number(std::string_view token, const std::string &file, const std::string &where) {
-  double value = 0;
-  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
-  if (ec != std::errc() || end != token.data() + token.size() || !std::isfinite(value))
-    throw InputError(file, where, "not a finite number: \"" + std::string(token) + "\"");
-  return value;
-}
-
-long long integer(std::string_view token, const std::string &file, const std::string &where) {
-  long long value = 0;
-  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
-  if (ec != std::errc() || end != token.data() + token.size())
-    throw InputError(file, where, "not an integer: \"" + std::string(token) + "\"");
-  return value;
-}
+using text::integer;
+using text::number;
+using text::tokens;
 
 /// Calls visit(lineNumber, tokens) for every non-empty line, comments removed.
 template <typename Visit> void forEachRecord(const std::string &text, Visit &&visit) {

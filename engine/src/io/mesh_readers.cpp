@@ -15,40 +15,15 @@
 
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
+#include "text_tokens.hpp"
 
 namespace curvenet {
 inline namespace v1 {
 namespace {
 
-/// Splits into whitespace-separated tokens.
-std::vector<std::string_view> tokens(std::string_view line) {
-  std::vector<std::string_view> out;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    std::size_t j = i;
-    while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
-    if (j > i) out.push_back(line.substr(i, j - i));
-    i = j;
-  }
-  return out;
-}
-
-double number(std::string_view token, const std::string &file, const std::string &where) {
-  double value = 0;
-  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
-  if (ec != std::errc() || end != token.data() + token.size() || !std::isfinite(value))
-    throw InputError(file, where, "not a finite number: \"" + std::string(token) + "\"");
-  return value;
-}
-
-long long integer(std::string_view token, const std::string &file, const std::string &where) {
-  long long value = 0;
-  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
-  if (ec != std::errc() || end != token.data() + token.size())
-    throw InputError(file, where, "not an integer: \"" + std::string(token) + "\"");
-  return value;
-}
+using text::integer;
+using text::number;
+using text::tokens;
 
 /// Lines without comments (`#` to the end) and without trailing '\r'.
 std::vector<std::string_view> lines(const std::string &text) {
