@@ -43,17 +43,6 @@ bool withinBound(const CurvatureTensor &t, double bound) {
   return std::max(std::abs(t.k1), std::abs(t.k2)) <= bound;
 }
 
-void fillResiduals(CurvatureFit &fit, std::span<const double> omegas, std::span<const double> ks) {
-  double sum = 0, worst = 0;
-  for (std::size_t i = 0; i < omegas.size(); ++i) {
-    const double r = fit.tensor.normalCurvature(omegas[i]) - ks[i];
-    sum += r * r;
-    worst = std::max(worst, std::abs(r));
-  }
-  fit.rmsResidual = std::sqrt(sum / double(omegas.size()));
-  fit.maxResidual = worst;
-}
-
 } // namespace
 
 double principalCurvatureBound(std::span<const double> ks) {

@@ -34,6 +34,10 @@ struct VertexCurvature {
   Vec3 direction2() const { return cross(normal, direction1()); }
 };
 
+/// Sets fit's rmsResidual and maxResidual: the misfit of its tensor's normal
+/// curvature in each direction omegas[i] to ks[i] (both 0 without curves).
+void fillResiduals(CurvatureFit &fit, std::span<const double> omegas, std::span<const double> ks);
+
 /// A vertex curvature fit that stays within what the curves show.
 struct BoundedCurvatureFit {
   CurvatureFit fit;

@@ -12,6 +12,7 @@
 
 #include <Eigen/Dense>
 
+#include "analysis/vertex_curvature.hpp"
 #include "curvenet/error.hpp"
 
 namespace curvenet {
@@ -49,17 +50,6 @@ void requireSameLength(std::size_t a, std::size_t b, const char *what) {
 void requireFinite(std::span<const double> v, const char *what) {
   for (std::size_t i = 0; i < v.size(); ++i)
     if (!std::isfinite(v[i])) throw InputError("", std::string(what) + " " + std::to_string(i), "not finite");
-}
-
-void fillResiduals(CurvatureFit &fit, std::span<const double> omegas, std::span<const double> ks) {
-  double sum = 0, worst = 0;
-  for (std::size_t i = 0; i < omegas.size(); ++i) {
-    const double r = fit.tensor.normalCurvature(omegas[i]) - ks[i];
-    sum += r * r;
-    worst = std::max(worst, std::abs(r));
-  }
-  fit.rmsResidual = omegas.empty() ? 0.0 : std::sqrt(sum / double(omegas.size()));
-  fit.maxResidual = worst;
 }
 
 /// Directions equal modulo π (within tolerance) are one independent curve.
@@ -234,6 +224,17 @@ double maxAbs(std::span<const double> v) {
 }
 
 } // namespace
+
+void fillResiduals(CurvatureFit &fit, std::span<const double> omegas, std::span<const double> ks) {
+  double sum = 0, worst = 0;
+  for (std::size_t i = 0; i < omegas.size(); ++i) {
+    const double r = fit.tensor.normalCurvature(omegas[i]) - ks[i];
+    sum += r * r;
+    worst = std::max(worst, std::abs(r));
+  }
+  fit.rmsResidual = omegas.empty() ? 0.0 : std::sqrt(sum / double(omegas.size()));
+  fit.maxResidual = worst;
+}
 
 // ---- representations -------------------------------------------------------
 

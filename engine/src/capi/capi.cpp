@@ -199,6 +199,17 @@ curvenet_status_code evaluateChunks(const curvenet_model *model, int face, const
   return report(first, status);
 }
 
+/// Tessellates `face` (or all faces) of the model and reports the mesh size:
+/// the common end of both tessellation entry points.
+curvenet_status_code tessellateModel(curvenet_model &model, const TessellationOptions &options, int face,
+                                     size_t *vertex_count, size_t *triangle_count, curvenet_status *status) {
+  const Result<MeshSize> size = model.model.tessellate(options, face);
+  if (!size) return report(size.status(), status);
+  if (vertex_count) *vertex_count = size->vertices;
+  if (triangle_count) *triangle_count = size->triangles;
+  return report({}, status);
+}
+
 } // namespace
 
 extern "C" {
@@ -363,11 +374,7 @@ curvenet_status_code curvenet_model_tessellate(curvenet_model *model, int face, 
   TessellationOptions options;
   options.resolution = resolution;
   options.threads = threads;
-  const Result<MeshSize> size = model->model.tessellate(options, face);
-  if (!size) return report(size.status(), status);
-  if (vertex_count) *vertex_count = size->vertices;
-  if (triangle_count) *triangle_count = size->triangles;
-  return report({}, status);
+  return tessellateModel(*model, options, face, vertex_count, triangle_count, status);
 }
 
 curvenet_status_code curvenet_model_tessellate_to_tolerance(curvenet_model *model, int face, double tolerance,
@@ -381,11 +388,7 @@ curvenet_status_code curvenet_model_tessellate_to_tolerance(curvenet_model *mode
   options.tolerance = tolerance;
   options.angle = angle_deg;
   options.threads = threads;
-  const Result<MeshSize> size = model->model.tessellate(options, face);
-  if (!size) return report(size.status(), status);
-  if (vertex_count) *vertex_count = size->vertices;
-  if (triangle_count) *triangle_count = size->triangles;
-  return report({}, status);
+  return tessellateModel(*model, options, face, vertex_count, triangle_count, status);
 }
 
 curvenet_status_code curvenet_model_copy_mesh(const curvenet_model *model, double *positions,
