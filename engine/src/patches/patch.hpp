@@ -153,6 +153,9 @@ private:
   void compositeParameters(Dual u, Dual v, Dual *s, Dual *d, Dual *blend) const;
   /// (u, v) moved onto a corner when within 1e-14 of it (see evaluate()).
   void snapToCorner(double &u, double &v) const;
+  /// compositeParameters at (u, v) after snapToCorner: the inputs of a
+  /// composite-ribbon batch's point.
+  void compositeParametersAt(double u, double v, Dual *s, Dual *d, Dual *blend) const;
   /// The CR formula from the side parameters, distances and blends of all
   /// sides, the ribbons evaluated exactly (compositeRibbonBatch: from tables).
   DualVec3 compositeRibbonFrom(const Dual *s, const Dual *d, const Dual *blends) const;

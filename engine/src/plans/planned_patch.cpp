@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "curvenet/error.hpp"
@@ -94,6 +95,166 @@ template <class T> struct CompositeInputs {
     }
   }
 };
+
+/// A Dual as the column type T of a batch: the value alone (double) or with its gradient (Dual).
+template <class T> T columnValue(const Dual &x) {
+  if constexpr (std::is_same_v<T, double>) {
+    return x.v;
+  } else {
+    return x;
+  }
+}
+
+/// The composite-ribbon inputs of `count` points, chunk by chunk: per point
+/// parameters(u, v, s, d, blend) (Patch::compositeParameters at the snapped
+/// point) stored as T in columns per side, then kernel(first, size, s, d,
+/// blend) on the chunk's columns (the CR position or jet kernel).
+template <class T, class Parameters, class Kernel>
+void forCompositeRibbonChunks(int n, std::size_t count, const double *u, const double *v, const Parameters &parameters,
+                              const Kernel &kernel) {
+  constexpr std::size_t kChunk = 512;
+  thread_local std::vector<T> columns;
+  for (std::size_t first = 0; first < count; first += kChunk) {
+    const std::size_t m = std::min(kChunk, count - first);
+    columns.resize(3 * static_cast<std::size_t>(n) * m);
+    std::array<const T *, kMaxSides> side, distance, blend;
+    auto column = [&](int which, int i) { return columns.data() + (static_cast<std::size_t>(which) * n + i) * m; };
+    for (std::size_t k = 0; k < m; ++k) {
+      std::array<Dual, kMaxSides> sk, dk, bk;
+      parameters(u[first + k], v[first + k], sk.data(), dk.data(), bk.data());
+      for (int i = 0; i < n; ++i)
+        column(0, i)[k] = columnValue<T>(sk[i]), column(1, i)[k] = columnValue<T>(dk[i]),
+        column(2, i)[k] = columnValue<T>(bk[i]);
+    }
+    for (int i = 0; i < n; ++i) side[i] = column(0, i), distance[i] = column(1, i), blend[i] = column(2, i);
+    kernel(first, m, side.data(), distance.data(), blend.data());
+  }
+}
+
+
+/// Per chunk of evaluateJets, structure of arrays of `count` samples: x, y
+/// (snapped points), the frame coordinates fx, fy and cubic Hermite roots of
+/// the side at hand, then for every side its parameter (value, ∂u, ∂v), its
+/// distance power and the corner blend (value, ∂u, ∂v).
+struct JetColumns {
+  int sides = 0;
+  std::size_t count = 0;
+  std::vector<double> data;
+  void reset(int n, std::size_t samples) {
+    sides = n, count = samples;
+    data.resize(static_cast<std::size_t>(9 * n + 6) * samples);
+  }
+  double *at(std::size_t array) { return data.data() + array * count; }
+  double *x() { return at(0); }
+  double *y() { return at(1); }
+  double *fx() { return at(2); }
+  double *fy() { return at(3); }
+  double *root() { return at(4); }
+  double *unused() { return at(5); } // the root solver's second output
+  double *side(int i, int c) { return at(6 + 3 * static_cast<std::size_t>(i) + c); }
+  double *power(int i, int c) { return at(6 + 3 * static_cast<std::size_t>(sides + i) + c); }
+  double *blend(int i, int c) { return at(6 + 3 * static_cast<std::size_t>(2 * sides + i) + c); }
+};
+
+/// Side i's frame unit: e = (p_{i+1} − p_i) / |p_{i+1} − p_i|². The frame
+/// (the side from (0, 0) to (1, 0), the domain at y > 0) is affine in
+/// (u, v): ∂(fx, fy)/∂u = (e.x, −e.y), ∂/∂v = (e.y, e.x).
+Vec2 sideFrameAxis(const RegularDomain &domain, int i) {
+  const Vec2 edge = domain.corner(i + 1) - domain.corner(i);
+  return edge / dot(edge, edge);
+}
+
+/// Side i's frame coordinates fx, fy of every sample, and its distance power
+/// Δ_i^m for the blends (m = 3 for G², 2 for G¹) with its gradient.
+void sideDistancePowerJets(const RegularDomain &domain, int i, bool g2, JetColumns &c) {
+  const Vec2 p = domain.corner(i), e = sideFrameAxis(domain, i);
+  double *x = c.x(), *y = c.y(), *fx = c.fx(), *fy = c.fy();
+  double *power[3] = {c.power(i, 0), c.power(i, 1), c.power(i, 2)};
+  for (std::size_t k = 0; k < c.count; ++k) {
+    const double qx = x[k] - p.x, qy = y[k] - p.y;
+    fx[k] = qx * e.x + qy * e.y, fy[k] = qy * e.x - qx * e.y;
+    const double squared = fy[k] * fy[k];
+    const double slope = g2 ? 3 * squared : 2 * fy[k];
+    power[0][k] = g2 ? squared * fy[k] : squared, power[1][k] = -slope * e.y, power[2][k] = slope * e.x;
+  }
+}
+
+/// Side i's radial sweep parameter from the frame coordinates: the closed
+/// form s = X − Y (x − X) / (y − Y) about the apex (X, Y), or x − y a_x / a_y
+/// for parallel neighbours, differentiated.
+void radialSweepJets(const RegularDomain &domain, int i, JetColumns &c) {
+  const kernels::SweepFrame &frame = domain.sweepFrame(i);
+  const Vec2 e = sideFrameAxis(domain, i);
+  const double *fx = c.fx(), *fy = c.fy();
+  double *s[3] = {c.side(i, 0), c.side(i, 1), c.side(i, 2)};
+  for (std::size_t k = 0; k < c.count; ++k) {
+    double sx, sy;
+    s[0][k] = RegularDomain::radialSideParameter(frame, fx[k], fy[k]);
+    if (frame.parallel) {
+      sx = 1, sy = -frame.ax / frame.ay;
+    } else {
+      const double inverse = 1 / (fy[k] - frame.apexY), ratio = frame.apexY * inverse;
+      sx = -ratio, sy = ratio * (fx[k] - frame.apexX) * inverse;
+    }
+    s[1][k] = sx * e.x - sy * e.y, s[2][k] = sx * e.y + sy * e.x;
+  }
+}
+
+/// Side i's cubic Hermite sweep parameter from the frame coordinates: the
+/// roots in one batched solve, their gradients by implicit differentiation
+/// of F(s; x, y) = (x − s) w_y(s) − y w_x(s) (as
+/// RegularDomain::hermiteSweepFromRoot).
+void cubicHermiteSweepJets(const RegularDomain &domain, int i, JetColumns &c) {
+  const kernels::SweepFrame &frame = domain.sweepFrame(i);
+  const Vec2 e = sideFrameAxis(domain, i);
+  const double *fx = c.fx(), *fy = c.fy();
+  double *root = c.root();
+  double *s[3] = {c.side(i, 0), c.side(i, 1), c.side(i, 2)};
+  kernels::hermiteSweepRoots(c.count, frame, fx, fy, root, c.unused());
+  for (std::size_t k = 0; k < c.count; ++k) {
+    const double r = root[k], q = 1 - r;
+    const double h0 = 2 * r * r * r - 3 * r * r + 1, h1 = 2 * q * q * q - 3 * q * q + 1;
+    const double d0 = 6 * r * r - 6 * r, d1 = 6 * q * q - 6 * q;
+    const double wx = frame.ax * h0 + frame.bx * h1, wy = frame.ay * h0 + frame.by * h1;
+    const double slopeX = frame.ax * d0 - frame.bx * d1, slopeY = frame.ay * d0 - frame.by * d1;
+    const double Fs = -wy + (fx[k] - r) * slopeY - fy[k] * slopeX;
+    const double sx = Fs != 0 ? -wy / Fs : 0, sy = Fs != 0 ? wx / Fs : 0;
+    s[0][k] = r, s[1][k] = sx * e.x - sy * e.y, s[2][k] = sx * e.y + sy * e.x;
+  }
+}
+
+/// Corner blends B_{i,i−1} = ∏_{j∉{i,i−1}} Δ_j^m / Σ_k ∏_{j∉{k,k−1}} Δ_j^m
+/// with their gradients from the distance powers, products in
+/// RegularDomain::cornerProducts' order. Overwrites the frame coordinates
+/// and roots (no longer needed) with the denominator.
+void cornerBlendJets(const RegularDomain &domain, JetColumns &c) {
+  const int n = c.sides;
+  const std::size_t m = c.count;
+  double *total[3] = {c.fx(), c.fy(), c.root()};
+  for (int t = 0; t < 3; ++t) std::fill(total[t], total[t] + m, 0.0);
+  for (int i = 0; i < n; ++i) {
+    double *b[3] = {c.blend(i, 0), c.blend(i, 1), c.blend(i, 2)};
+    std::fill(b[0], b[0] + m, 1.0), std::fill(b[1], b[1] + m, 0.0), std::fill(b[2], b[2] + m, 0.0);
+    for (int j = 0; j < n; ++j) {
+      if (j == i || j == domain.wrap(i - 1)) continue;
+      const double *pv = c.power(j, 0), *pu = c.power(j, 1), *pw = c.power(j, 2);
+      for (std::size_t k = 0; k < m; ++k) {
+        const double value = b[0][k];
+        b[0][k] = value * pv[k], b[1][k] = b[1][k] * pv[k] + value * pu[k], b[2][k] = b[2][k] * pv[k] + value * pw[k];
+      }
+    }
+    for (int t = 0; t < 3; ++t)
+      for (std::size_t k = 0; k < m; ++k) total[t][k] += b[t][k];
+  }
+  for (int i = 0; i < n; ++i) {
+    double *b[3] = {c.blend(i, 0), c.blend(i, 1), c.blend(i, 2)};
+    for (std::size_t k = 0; k < m; ++k) {
+      // The quotient as Dual's: a true division for the value, one reciprocal for the partials.
+      const double q = b[0][k] / total[0][k], inverse = 1 / total[0][k];
+      b[0][k] = q, b[1][k] = (b[1][k] - q * total[1][k]) * inverse, b[2][k] = (b[2][k] - q * total[2][k]) * inverse;
+    }
+  }
+}
 
 } // namespace
 
@@ -324,6 +485,11 @@ void Patch::gregoryPositionsFrom(std::size_t count, const double *const *sideVal
   }
 }
 
+void Patch::compositeParametersAt(double u, double v, Dual *s, Dual *d, Dual *blend) const {
+  snapToCorner(u, v);
+  compositeParameters(Dual::u(u), Dual::vCoord(v), s, d, blend);
+}
+
 void Patch::evaluatePositions(std::size_t count, const double *u, const double *v, const PositionSink &out) const {
   const int n = domain_.sides();
   const bool gregory = options_.scheme == Scheme::GregoryG1 || options_.scheme == Scheme::GregoryG2;
@@ -333,23 +499,13 @@ void Patch::evaluatePositions(std::size_t count, const double *u, const double *
   // and the CR kernel; smaller batches point by point.
   constexpr std::size_t kCompositeBatch = 512;
   if (options_.scheme == Scheme::CompositeRibbon && count >= kCompositeBatch) {
-    constexpr std::size_t kChunk = 512;
-    thread_local std::vector<double> columns;
-    for (std::size_t first = 0; first < count; first += kChunk) {
-      const std::size_t m = std::min(kChunk, count - first);
-      columns.resize(3 * static_cast<std::size_t>(n) * m);
-      std::array<const double *, kMaxSides> side, distance, blend;
-      auto column = [&](int which, int i) { return columns.data() + (static_cast<std::size_t>(which) * n + i) * m; };
-      for (std::size_t k = 0; k < m; ++k) {
-        double x = u[first + k], y = v[first + k];
-        snapToCorner(x, y);
-        std::array<Dual, kMaxSides> s, d, b;
-        compositeParameters(Dual::u(x), Dual::vCoord(y), s.data(), d.data(), b.data());
-        for (int i = 0; i < n; ++i) column(0, i)[k] = s[i].v, column(1, i)[k] = d[i].v, column(2, i)[k] = b[i].v;
-      }
-      for (int i = 0; i < n; ++i) side[i] = column(0, i), distance[i] = column(1, i), blend[i] = column(2, i);
-      compositeRibbonPositions(m, side.data(), distance.data(), blend.data(), out.from(first));
-    }
+    const auto compositeAt = [this](double x, double y, Dual *side, Dual *distance, Dual *blend) {
+      compositeParametersAt(x, y, side, distance, blend);
+    };
+    forCompositeRibbonChunks<double>(
+        n, count, u, v, compositeAt,
+        [&](std::size_t first, std::size_t m, const double *const *side, const double *const *distance,
+            const double *const *blend) { compositeRibbonPositions(m, side, distance, blend, out.from(first)); });
     return;
   }
   if (!gregory || options_.sweepline == Sweepline::QuinticHermite) {
@@ -621,22 +777,13 @@ void Patch::evaluateJets(std::size_t count, const double *u, const double *v, Du
     // Each point's Wachspress distances, linear-sweep parameters and blends
     // with their gradients (compositeRibbon's formulas), then the tables and
     // the CR jet kernel.
-    thread_local std::vector<Dual> columns;
-    for (std::size_t first = 0; first < count; first += kChunk) {
-      const std::size_t m = std::min(kChunk, count - first);
-      columns.resize(3 * static_cast<std::size_t>(n) * m);
-      std::array<const Dual *, kMaxSides> side, distance, blend;
-      auto column = [&](int which, int i) { return columns.data() + (static_cast<std::size_t>(which) * n + i) * m; };
-      for (std::size_t k = 0; k < m; ++k) {
-        double x = u[first + k], y = v[first + k];
-        snapToCorner(x, y);
-        std::array<Dual, kMaxSides> s, d, b;
-        compositeParameters(Dual::u(x), Dual::vCoord(y), s.data(), d.data(), b.data());
-        for (int i = 0; i < n; ++i) column(0, i)[k] = s[i], column(1, i)[k] = d[i], column(2, i)[k] = b[i];
-      }
-      for (int i = 0; i < n; ++i) side[i] = column(0, i), distance[i] = column(1, i), blend[i] = column(2, i);
-      compositeRibbonJets(m, side.data(), distance.data(), blend.data(), out + first);
-    }
+    const auto compositeAt = [this](double x, double y, Dual *side, Dual *distance, Dual *blend) {
+      compositeParametersAt(x, y, side, distance, blend);
+    };
+    forCompositeRibbonChunks<Dual>(
+        n, count, u, v, compositeAt,
+        [&](std::size_t first, std::size_t m, const Dual *const *side, const Dual *const *distance,
+            const Dual *const *blend) { compositeRibbonJets(m, side, distance, blend, out + first); });
     return;
   }
   if (!gregory) {
@@ -651,122 +798,43 @@ void Patch::evaluateJets(std::size_t count, const double *u, const double *v, Du
   // opposite corner, where the batched solver's choice of root may part from
   // it); the rest of their formula runs batched all the same.
   const bool pointwiseSweeps = !radial && (quintic || n == 3);
-  // Per chunk, structure of arrays: x, y (snapped points), then for every
-  // side its parameter (value, ∂u, ∂v), its distance power and the corner
-  // blend (value, ∂u, ∂v), and the frame coordinates and roots of one side.
-  struct Columns {
-    std::size_t count = 0;
-    std::vector<double> data;
-    double *at(std::size_t array) { return data.data() + array * count; }
-  };
-  thread_local Columns scratch;
+  thread_local JetColumns columns;
   for (std::size_t first = 0; first < count; first += kChunk) {
     const std::size_t m = std::min(kChunk, count - first);
-    scratch.count = m;
-    scratch.data.resize(static_cast<std::size_t>(9 * n + 6) * m);
-    double *x = scratch.at(0), *y = scratch.at(1), *fx = scratch.at(2), *fy = scratch.at(3), *root = scratch.at(4),
-           *unused = scratch.at(5);
-    auto sideColumn = [&](int i, int c) { return scratch.at(6 + 3 * static_cast<std::size_t>(i) + c); };
-    auto powerColumn = [&](int i, int c) { return scratch.at(6 + 3 * static_cast<std::size_t>(n + i) + c); };
-    auto blendColumn = [&](int i, int c) { return scratch.at(6 + 3 * static_cast<std::size_t>(2 * n + i) + c); };
+    columns.reset(n, m);
     for (std::size_t k = 0; k < m; ++k) {
-      x[k] = u[first + k], y[k] = v[first + k];
-      snapToCorner(x[k], y[k]);
+      columns.x()[k] = u[first + k], columns.y()[k] = v[first + k];
+      snapToCorner(columns.x()[k], columns.y()[k]);
     }
     if (pointwiseSweeps) {
       std::array<Dual, kMaxSides> s;
       for (std::size_t k = 0; k < m; ++k) {
-        domain_.hermiteSweepSides(Dual::u(x[k]), Dual::vCoord(y[k]), quintic, s);
+        domain_.hermiteSweepSides(Dual::u(columns.x()[k]), Dual::vCoord(columns.y()[k]), quintic, s);
         for (int i = 0; i < n; ++i)
-          sideColumn(i, 0)[k] = s[i].v, sideColumn(i, 1)[k] = s[i].du, sideColumn(i, 2)[k] = s[i].dv;
+          columns.side(i, 0)[k] = s[i].v, columns.side(i, 1)[k] = s[i].du, columns.side(i, 2)[k] = s[i].dv;
       }
     }
-    const kernels::SweepFrame frame = domain_.sweepFrame(0);
     for (int i = 0; i < n; ++i) {
-      // Side i's frame: the side from (0, 0) to (1, 0), the domain at y > 0.
-      // It is affine in (u, v): ∂(fx, fy)/∂u = (e.x, −e.y), ∂/∂v = (e.y, e.x)
-      // for e = (p_{i+1} − p_i) / |p_{i+1} − p_i|².
-      const Vec2 p = domain_.corner(i), edge = domain_.corner(i + 1) - p, e = edge / dot(edge, edge);
-      double *power[3] = {powerColumn(i, 0), powerColumn(i, 1), powerColumn(i, 2)};
-      for (std::size_t k = 0; k < m; ++k) {
-        const double qx = x[k] - p.x, qy = y[k] - p.y;
-        fx[k] = qx * e.x + qy * e.y, fy[k] = qy * e.x - qx * e.y;
-        // Δ_i^m for the blends (m = 3 for G², 2 for G¹) with its gradient.
-        const double squared = fy[k] * fy[k];
-        const double slope = g2 ? 3 * squared : 2 * fy[k];
-        power[0][k] = g2 ? squared * fy[k] : squared, power[1][k] = -slope * e.y, power[2][k] = slope * e.x;
-      }
+      sideDistancePowerJets(domain_, i, g2, columns);
       if (pointwiseSweeps) continue;
-      double *s[3] = {sideColumn(i, 0), sideColumn(i, 1), sideColumn(i, 2)};
       if (radial) {
-        // The closed form s = X − Y (x − X) / (y − Y) about the apex (X, Y),
-        // or x − y a_x / a_y for parallel neighbours, differentiated.
-        for (std::size_t k = 0; k < m; ++k) {
-          double sx, sy;
-          s[0][k] = RegularDomain::radialSideParameter(frame, fx[k], fy[k]);
-          if (frame.parallel) {
-            sx = 1, sy = -frame.ax / frame.ay;
-          } else {
-            const double inverse = 1 / (fy[k] - frame.apexY), ratio = frame.apexY * inverse;
-            sx = -ratio, sy = ratio * (fx[k] - frame.apexX) * inverse;
-          }
-          s[1][k] = sx * e.x - sy * e.y, s[2][k] = sx * e.y + sy * e.x;
-        }
-        continue;
-      }
-      // Cubic Hermite: the roots in one batched solve, their gradients by
-      // implicit differentiation of F(s; x, y) = (x − s) w_y(s) − y w_x(s)
-      // (as RegularDomain::hermiteSweepFromRoot).
-      kernels::hermiteSweepRoots(m, frame, fx, fy, root, unused);
-      for (std::size_t k = 0; k < m; ++k) {
-        const double r = root[k], q = 1 - r;
-        const double h0 = 2 * r * r * r - 3 * r * r + 1, h1 = 2 * q * q * q - 3 * q * q + 1;
-        const double d0 = 6 * r * r - 6 * r, d1 = 6 * q * q - 6 * q;
-        const double wx = frame.ax * h0 + frame.bx * h1, wy = frame.ay * h0 + frame.by * h1;
-        const double slopeX = frame.ax * d0 - frame.bx * d1, slopeY = frame.ay * d0 - frame.by * d1;
-        const double Fs = -wy + (fx[k] - r) * slopeY - fy[k] * slopeX;
-        const double sx = Fs != 0 ? -wy / Fs : 0, sy = Fs != 0 ? wx / Fs : 0;
-        s[0][k] = r, s[1][k] = sx * e.x - sy * e.y, s[2][k] = sx * e.y + sy * e.x;
+        radialSweepJets(domain_, i, columns);
+      } else {
+        cubicHermiteSweepJets(domain_, i, columns);
       }
     }
-    // Corner blends B_{i,i−1} = ∏_{j∉{i,i−1}} Δ_j^m / Σ_k ∏_{j∉{k,k−1}} Δ_j^m
-    // with their gradients, products in RegularDomain::cornerProducts' order.
-    double *total[3] = {fx, fy, root}; // the frame coordinates and roots are no longer needed
-    for (int c = 0; c < 3; ++c) std::fill(total[c], total[c] + m, 0.0);
-    for (int i = 0; i < n; ++i) {
-      double *b[3] = {blendColumn(i, 0), blendColumn(i, 1), blendColumn(i, 2)};
-      std::fill(b[0], b[0] + m, 1.0), std::fill(b[1], b[1] + m, 0.0), std::fill(b[2], b[2] + m, 0.0);
-      for (int j = 0; j < n; ++j) {
-        if (j == i || j == domain_.wrap(i - 1)) continue;
-        const double *pv = powerColumn(j, 0), *pu = powerColumn(j, 1), *pw = powerColumn(j, 2);
-        for (std::size_t k = 0; k < m; ++k) {
-          const double value = b[0][k];
-          b[0][k] = value * pv[k], b[1][k] = b[1][k] * pv[k] + value * pu[k], b[2][k] = b[2][k] * pv[k] + value * pw[k];
-        }
-      }
-      for (int c = 0; c < 3; ++c)
-        for (std::size_t k = 0; k < m; ++k) total[c][k] += b[c][k];
-    }
-    for (int i = 0; i < n; ++i) {
-      double *b[3] = {blendColumn(i, 0), blendColumn(i, 1), blendColumn(i, 2)};
-      for (std::size_t k = 0; k < m; ++k) {
-        // The quotient as Dual's: a true division for the value, one reciprocal for the partials.
-        const double q = b[0][k] / total[0][k], inverse = 1 / total[0][k];
-        b[0][k] = q, b[1][k] = (b[1][k] - q * total[1][k]) * inverse, b[2][k] = (b[2][k] - q * total[2][k]) * inverse;
-      }
-    }
+    cornerBlendJets(domain_, columns);
     gregoryJetsFrom(
         m,
         [&](int i, std::size_t block, std::size_t size, double *const s[3], double *const b[3]) {
           for (int c = 0; c < 3; ++c) {
-            std::copy_n(sideColumn(i, c) + block, size, s[c]);
-            std::copy_n(blendColumn(i, c) + block, size, b[c]);
+            std::copy_n(columns.side(i, c) + block, size, s[c]);
+            std::copy_n(columns.blend(i, c) + block, size, b[c]);
           }
         },
         true, out + first);
   }
 }
-
 
 } // namespace v1
 } // namespace curvenet
