@@ -63,7 +63,7 @@ TEST_F(CliUsage, BadNumbersGetOneShortLineNamingTheWord) {
            {"check builtin:pentagon --threads -1", "-1 is not in [0, 1024]", 2},
            {"tessellate builtin:pentagon -o x.obj --resolution 99999999999999999999", "99999999999999999999", 2},
            {"render builtin:pentagon -o x.png --stripes 1e999", "'1e999' is not a number", 2},
-           {"render builtin:pentagon -o x.png --size 100000x100000", "16384", 1},
+           {"render builtin:pentagon -o x.png --size 100000x100000", "16384", 2},
        }) {
     const CliRun run = runCli(c.arguments);
     EXPECT_EQ(run.exitCode, c.exitCode) << c.arguments << "\n" << run.err;
@@ -71,6 +71,32 @@ TEST_F(CliUsage, BadNumbersGetOneShortLineNamingTheWord) {
     EXPECT_EQ(lineCount(run.err), 1u) << c.arguments << "\n" << run.err;
     EXPECT_LT(run.err.size(), 160u) << c.arguments << "\n" << run.err;
   }
+}
+
+TEST_F(CliUsage, BadOptionValuesAreUsageErrorsNamingTheOption) {
+  // Exit 2 as for an unknown option, one line naming the option and the word,
+  // and nothing written: the values are checked before any work.
+  struct Case {
+    std::string arguments, option, word;
+  };
+  for (const Case &c : std::vector<Case>{
+           {"tessellate builtin:pentagon -o " + path("t.obj") + " --scheme nope", "--scheme", "'nope'"},
+           {"check builtin:pentagon --masters sideways", "--masters", "'sideways'"},
+           {"check builtin:pentagon --curves bent", "--curves", "'bent'"},
+           {"check builtin:pentagon --scheme gregory-g1 --masters kept-g1", "--masters", "gregory-g2"},
+           {"render builtin:pentagon -o " + path("r.png") + " --mode x", "--mode", "'x'"},
+           {"render builtin:pentagon -o " + path("r.png") + " --size 12by5", "--size", "'12by5'"},
+           {"render builtin:pentagon -o " + path("r.png") + " --view north", "--view", "'north'"},
+           {"tessellate builtin:pentagon --angle 5 --json", "--angle", "--tolerance"},
+       }) {
+    const CliRun run = runCli(c.arguments);
+    EXPECT_EQ(run.exitCode, 2) << c.arguments << "\n" << run.err;
+    EXPECT_TRUE(contains(run.err, "usage error: " + c.option)) << c.arguments << "\n" << run.err;
+    EXPECT_TRUE(contains(run.err, c.word)) << c.arguments << "\n" << run.err;
+    EXPECT_EQ(lineCount(run.err), 1u) << c.arguments << "\n" << run.err;
+  }
+  EXPECT_FALSE(fs::exists(dir / "t.obj"));
+  EXPECT_FALSE(fs::exists(dir / "r.png"));
 }
 
 TEST_F(CliUsage, HelpListsEverySchemeAndEveryDefault) {

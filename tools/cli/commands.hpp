@@ -7,6 +7,7 @@
 #include <climits>
 #include <cstdio>
 #include <functional>
+#include <stdexcept>
 #include <string>
 
 #include "curvenet/error.hpp"
@@ -17,6 +18,14 @@
 #include "render.hpp"
 
 namespace curvenet::cli {
+
+/// A mistake in how the program is called, found after parsing: an option
+/// value it does not accept ("--scheme nope", "--size 0x0") or options that do
+/// not go together. Exit 2 with one line, as CLI11's own usage errors.
+class UsageError : public std::runtime_error {
+public:
+  UsageError(const std::string &option, const std::string &reason) : std::runtime_error(option + ": " + reason) {}
+};
 
 /// A registered subcommand and what it does after parsing (returns the exit code).
 struct Command {
@@ -92,7 +101,7 @@ void createOutputFolder(const std::string &folder);
 /// (standard output then carries the data), standard output otherwise.
 std::FILE *summaryStream(const std::string &output);
 
-/// The scheme for a --scheme value; InputError listing the known ones otherwise.
+/// The scheme for a --scheme value; UsageError listing the known ones otherwise.
 Scheme parseScheme(const std::string &name);
 /// `--masters rebuilt|kept-g1` (what gregory-g2 builds over master faces) on `sub`.
 void addMastersOption(CLI::App *sub, std::string &masters);
@@ -102,7 +111,7 @@ void addCurvesOption(CLI::App *sub, std::string &curves);
 /// (curvenet/shape.hpp) fails the command before anything is written.
 void addStrictFlag(CLI::App *sub, bool &strict);
 /// The surface options for --scheme, --masters and --curves values;
-/// InputError for an unknown name, or kept-g1 with a scheme other than gregory-g2.
+/// UsageError for an unknown name, or kept-g1 with a scheme other than gregory-g2.
 SurfaceOptions parseSurfaceOptions(const std::string &scheme, const std::string &masters,
                                    const std::string &curves = "repaired");
 

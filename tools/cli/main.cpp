@@ -56,6 +56,9 @@ int main(int argc, char **argv) {
   try {
     for (CLI::App *sub : app.get_subcommands())
       if (auto it = actions.find(sub); it != actions.end()) return it->second();
+  } catch (const UsageError &e) {
+    std::fprintf(stderr, "curvenet: usage error: %s (see --help)\n", e.what());
+    return 2;
   } catch (const curvenet::InputError &e) {
     std::fprintf(stderr, "curvenet: error: %s\n", e.what());
     return 1;

@@ -156,20 +156,20 @@ Command addRenderCommand(CLI::App &app) {
             const SurfaceOptions surfaceOptions = parseSurfaceOptions(o->scheme, o->masters, o->curves);
             render::RenderOptions r;
             if (auto m = render::modeFromName(o->mode)) r.mode = *m;
-            else throw InputError("", "--mode", "unknown mode '" + o->mode + "'; available: reflection, isophote, mean, gauss");
+            else throw UsageError("--mode", "unknown mode '" + o->mode + "'; available: reflection, isophote, mean, gauss");
             std::smatch match;
             static const std::regex sizePattern(R"(^([0-9]{1,9})[xX]([0-9]{1,9})$)");
             if (!std::regex_match(o->size, match, sizePattern))
-              throw InputError("", "--size", "expected WxH, e.g. 800x600, got '" + o->size + "'");
+              throw UsageError("--size", "expected WxH, e.g. 800x600, got '" + o->size + "'");
             r.width = std::stoi(match[1]);
             r.height = std::stoi(match[2]);
             if (r.width < 1 || r.height < 1 || r.width > 16384 || r.height > 16384)
-              throw InputError("", "--size", o->size + ": width and height must lie in [1, 16384]");
+              throw UsageError("--size", o->size + ": width and height must lie in [1, 16384]");
             static const std::regex viewPattern(R"(^\s*([-+]?[0-9]*\.?[0-9]+)\s*,\s*([-+]?[0-9]*\.?[0-9]+)\s*$)");
             const bool framed = o->view.empty();
             if (!framed) {
               if (!std::regex_match(o->view, match, viewPattern))
-                throw InputError("", "--view", "expected AZ,EL in degrees, e.g. 30,30, got '" + o->view + "'");
+                throw UsageError("--view", "expected AZ,EL in degrees, e.g. 30,30, got '" + o->view + "'");
               r.azimuth = std::stod(match[1]);
               r.elevation = std::stod(match[2]);
             }

@@ -11,7 +11,7 @@ Scheme parseScheme(const std::string &name) {
   if (auto scheme = schemeFromName(name)) return *scheme;
   std::string known;
   for (Scheme s : availableSchemes()) known += (known.empty() ? "" : ", ") + schemeName(s);
-  throw InputError("", "--scheme", "unknown or not yet available scheme '" + name + "'; available: " + known);
+  throw UsageError("--scheme", "unknown or not yet available scheme '" + name + "'; available: " + known);
 }
 
 void addMastersOption(CLI::App *sub, std::string &masters) {
@@ -39,15 +39,15 @@ SurfaceOptions parseSurfaceOptions(const std::string &scheme, const std::string 
   options.scheme = parseScheme(scheme);
   const std::optional<MasterFaces> m = masterFacesFromName(masters);
   if (!m)
-    throw InputError("", "--masters", "unknown value '" + masters + "'; available: " +
+    throw UsageError("--masters", "unknown value '" + masters + "'; available: " +
                                           masterFacesName(MasterFaces::Rebuilt) + ", " +
                                           masterFacesName(MasterFaces::KeptG1));
   if (*m != MasterFaces::Rebuilt && options.scheme != Scheme::GregoryG2)
-    throw InputError("", "--masters", masters + " needs --scheme gregory-g2 (other schemes build every face alike)");
+    throw UsageError("--masters", masters + " needs --scheme gregory-g2 (other schemes build every face alike)");
   options.masterFaces = *m;
   const std::optional<CurveHandling> c = curveHandlingFromName(curves);
   if (!c)
-    throw InputError("", "--curves", "unknown value '" + curves + "'; available: repaired, kept");
+    throw UsageError("--curves", "unknown value '" + curves + "'; available: repaired, kept");
   options.curves = *c;
   return options;
 }

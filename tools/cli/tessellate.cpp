@@ -53,9 +53,9 @@ Command addTessellateCommand(CLI::App &app) {
             const SurfaceOptions options = parseSurfaceOptions(o->scheme, o->masters, o->curves);
             const Scheme scheme = options.scheme;
             if (!o->controlNets.empty() && scheme != Scheme::BezierG1 && scheme != Scheme::CoonsC0)
-              throw InputError("", "--control-nets", "needs --scheme bezier-g1 or coons-c0");
-            if (o->output.empty() && !o->json) throw InputError("", "-o/--output", "is required (or give --json)");
-            if (o->angle > 0 && !(o->tolerance > 0)) throw InputError("", "--angle", "needs --tolerance");
+              throw UsageError("--control-nets", "needs --scheme bezier-g1 or coons-c0");
+            if (o->output.empty() && !o->json) throw UsageError("-o/--output", "is required (or give --json)");
+            if (o->angle > 0 && !(o->tolerance > 0)) throw UsageError("--angle", "needs --tolerance");
             const Network network = Network::build(loadNetworkArgument(o->input), o->input);
             const Surface surface = buildSurface(network, options, o->input);
             warnAboutFolds(surface);
