@@ -14,6 +14,7 @@
 #include "curvenet/error.hpp"
 #include "curvenet/tessellate.hpp"
 #include "patches/patch.hpp"
+#include "plans/face_errors.hpp"
 #include "plans/plan.hpp"
 #include "ribbons/ribbon_table.hpp"
 
@@ -88,6 +89,24 @@ TEST(RibbonTable, ADerivativeThatDisagreesWithItsValuesIsAnErrorAtBoundedCost) {
     for (std::size_t k = 0; k < s.size(); ++k) values[k] = std::sin(3 * s[k]), slopes[k] = 3 * std::cos(3 * s[k]);
   };
   EXPECT_LE(RibbonTable(1, breaks, consistent).valueError(), 1e-13);
+}
+
+// A table that cannot be built while a face is evaluated names the face as
+// well as the table's own complaint, and nothing else is caught.
+TEST(RibbonTable, ATableThatCannotBeBuiltForAFaceNamesTheFace) {
+  auto inconsistent = [](std::span<const double> s, double *values, double *slopes) {
+    for (std::size_t k = 0; k < s.size(); ++k) values[k] = std::sin(3 * s[k]), slopes[k] = 2 * 3 * std::cos(3 * s[k]);
+  };
+  try {
+    namingFace(7, [&] { return RibbonTable(1, {0.5}, inconsistent); });
+    ADD_FAILURE() << "the inconsistent table was built";
+  } catch (const InternalError &e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("face 7: ribbon table: ", 0), 0u) << message;
+    EXPECT_NE(message.find("disagree"), std::string::npos) << message;
+  }
+  EXPECT_THROW(namingFace(7, [] { throw InputError("", "curve 1", "bad"); }), InputError);
+  EXPECT_EQ(namingFace(7, [] { return 42; }), 42);
 }
 
 TEST(RibbonTable, MatchesExactRibbonsOfEveryBuiltin) {

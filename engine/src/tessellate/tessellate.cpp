@@ -24,6 +24,7 @@
 #include "bezier/bezier_surface.hpp"
 #include "curvenet/error.hpp"
 #include "patches/patch.hpp"
+#include "plans/face_errors.hpp"
 #include "plans/plan.hpp"
 #include "parallel/fork_join.hpp"
 
@@ -186,16 +187,19 @@ std::vector<Tile> planTiles(const Surface &surface, const std::vector<int> &face
   return tiles;
 }
 
-/// run(tile) for every tile: serially for small totals, else one tile per task.
+/// run(tile) for every tile: serially for small totals, else one tile per
+/// task. Engine errors (a face's ribbon tables are built on its first tile)
+/// name the tile's face.
 template <class Run> void forEachTile(const std::vector<Tile> &tiles, std::size_t total, const Run &run) {
+  const auto runNamingFace = [&](const Tile &tile) { namingFace(tile.face, [&] { run(tile); }); };
   if (total < kSerialSamples) {
-    for (const Tile &tile : tiles) run(tile);
+    for (const Tile &tile : tiles) runNamingFace(tile);
     return;
   }
   // One tile per task (grain 1): a tile is already ~10⁵ flops.
   parallel::parallelFor(tbb::blocked_range<std::size_t>(0, tiles.size(), 1),
                         [&](const tbb::blocked_range<std::size_t> &range) {
-                          for (std::size_t t = range.begin(); t < range.end(); ++t) run(tiles[t]);
+                          for (std::size_t t = range.begin(); t < range.end(); ++t) runNamingFace(tiles[t]);
                         });
 }
 
