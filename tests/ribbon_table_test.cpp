@@ -6,11 +6,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <random>
 
 #include "bezier/bezier_surface.hpp"
 #include "curvenet/builtins.hpp"
+#include "curvenet/curvenet.hpp"
 #include "curvenet/error.hpp"
 #include "curvenet/tessellate.hpp"
 #include "patches/patch.hpp"
@@ -129,6 +131,42 @@ TEST(RibbonTable, MatchesExactRibbonsOfEveryBuiltin) {
                   double(intervals) / double(sides));
     }
   }
+}
+
+// The tables sample each breakpoint interval one ulp inside its ends and
+// rely on the exact ribbon taking there the piece of the side it is asked
+// from. Curves fitted to a sketch carry many interior knots at arbitrary
+// parameters, and their sides run against their segments (reversed pieces):
+// a segment's knot mapped to the side parameter lands a few ulps off the
+// side curve's own, where the ribbon's second derivatives actually jump. So
+// one ulp beside every listed breakpoint the ribbon must already be on that
+// side: its second derivatives there agree with those a little further in.
+TEST(RibbonTable, RibbonsTakeTheSideOfEveryBreakpointTheyAreAskedFrom) {
+  const std::filesystem::path sketch = std::filesystem::path(CURVENET_SHARED_DATA_DIR) / "sketches" / "doghead.obj";
+  if (!std::filesystem::is_regular_file(sketch)) GTEST_SKIP() << sketch << " is not there (shared data absent)";
+  auto model = Model::load(sketch.string(), {.scheme = Scheme::GregoryG2});
+  ASSERT_TRUE(model.ok()) << model.status().toString();
+  std::size_t checked = 0;
+  for (int f = 0; f < model->faceCount(); ++f) {
+    const Patch &patch = *SurfaceAccess::patch(*model->surface(f), f);
+    for (int side = 0; side < patch.domain().sides(); ++side) {
+      const LinearRibbon &ribbon = patch.ribbon(side);
+      for (double b : ribbon.breakpoints()) {
+        for (double towards : {0.0, 1.0}) {
+          const double inside = std::nextafter(b, towards), further = b + (towards - b) * 1e-9;
+          if (!(further != inside) || b <= 0 || b >= 1) continue;
+          const LinearRibbon::SecondJet at = ribbon.secondJet(inside), beyond = ribbon.secondJet(further);
+          // Within 1e-9 of the interval the third derivatives move ddT by
+          // far less than this; a jump at a knot moves it by its own size.
+          const double size = norm(beyond.ddT) + norm(beyond.dT) + norm(beyond.T);
+          EXPECT_LE(norm(at.ddT - beyond.ddT), 1e-5 * size)
+              << "face " << f << " side " << side << " breakpoint " << b << (towards > b ? " from above" : " from below");
+          ++checked;
+        }
+      }
+    }
+  }
+  EXPECT_GT(checked, 100u);
 }
 
 // One test per scheme, so that the suite's parallel runner (and the slow

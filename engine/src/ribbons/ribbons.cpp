@@ -398,6 +398,12 @@ std::vector<double> NormalFence::breakpoints() const {
   return out;
 }
 
+std::vector<double> NormalFence::interpolantBreakpoints() const {
+  std::vector<double> out;
+  interiorKnots(smoothNormal_, out);
+  return out;
+}
+
 std::vector<double> TransversalCurvature::breakpoints() const {
   std::vector<double> out;
   interiorKnots(spline_, out);
@@ -409,7 +415,7 @@ std::vector<double> LinearRibbon::breakpoints() const {
   interiorKnots(curve_, out);
   for (const Piece &piece : pieces_) {
     if (piece.sTo < 1) out.push_back(piece.sTo);
-    for (double u : piece.fence->breakpoints())
+    for (double u : piece.fence->interpolantBreakpoints())
       out.push_back(piece.sFrom + (piece.sTo - piece.sFrom) * (piece.reversed ? 1 - u : u));
   }
   return out;

@@ -65,6 +65,10 @@ public:
   /// Segment parameters in (0, 1) where derivatives of the normal may jump:
   /// the knots of the segment and of the normal interpolant.
   std::vector<double> breakpoints() const;
+  /// The knots of the normal interpolant alone: where derivatives of the
+  /// normal may jump when the caller supplies the curve's derivatives (the
+  /// overloads above taking `curve`), whose own knots are then the caller's.
+  std::vector<double> interpolantBreakpoints() const;
 
 private:
   NormalFence() = default;
@@ -189,7 +193,11 @@ public:
   /// there, and du/ds.
   int pieceAt(double s, double &local, double &dLocal) const;
   /// Side parameters in (0, 1) where derivatives of P or T may jump: segment
-  /// breaks, knots of the side curve, the fences' breakpoints.
+  /// breaks, knots of the side curve, the knots of the fences' normal
+  /// interpolants. The jets take the fences' normals with the side curve's
+  /// derivatives, so the segments' own knots are not listed: mapped to the
+  /// side parameter they land a few ulps off the side curve's knots, and a
+  /// breakpoint there would put the table's end samples on the wrong piece.
   std::vector<double> breakpoints() const;
 
 private:
