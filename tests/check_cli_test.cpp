@@ -181,7 +181,8 @@ TEST_F(CheckCli, RepairedCurvesListEveryMoveAndKeptCurvesNone) {
 
   const CliRun g1 = runCli("check " + input.string() + " --json");
   ASSERT_EQ(g1.exitCode, 0) << g1.err;
-  for (const auto &m : nlohmann::json::parse(g1.out)["repair"]["moves"]) EXPECT_EQ(m["kind"], "tangent-plane");
+  const auto g1Report = nlohmann::json::parse(g1.out); // named: a range-for keeps no temporary alive
+  for (const auto &m : g1Report["repair"]["moves"]) EXPECT_EQ(m["kind"], "tangent-plane");
 
   const CliRun kept = runCli("check " + input.string() + " --json --curves kept");
   ASSERT_EQ(kept.exitCode, 0) << kept.err;
