@@ -203,7 +203,8 @@ public:
     };
     std::vector<Candidate> candidates;
     for (int k = 0; k < static_cast<int>(all.size()); ++k) {
-      const auto [a0, a1] = all[k];
+      // Plain names, not a structured binding: the lambda below captures them.
+      const int a0 = all[k].first, a1 = all[k].second;
       grid.near((g_.points[a0] + g_.points[a1]) * 0.5, [&](int j) {
         if (j <= k) return;
         const auto [b0, b1] = all[j];
