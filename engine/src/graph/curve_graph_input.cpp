@@ -23,17 +23,9 @@ using text::tokens;
 
 /// Calls visit(lineNumber, tokens) for every non-empty line, comments removed.
 template <typename Visit> void forEachRecord(const std::string &text, Visit &&visit) {
-  std::string_view all(text);
-  std::size_t start = 0, number = 0;
-  while (start < all.size()) {
-    std::size_t end = all.find('\n', start);
-    if (end == std::string_view::npos) end = all.size();
-    std::string_view line = all.substr(start, end - start);
-    ++number;
-    if (auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-    if (const auto t = tokens(line); !t.empty()) visit(number, t);
-    start = end + 1;
-  }
+  const std::vector<std::string_view> all = text::lines(text);
+  for (std::size_t k = 0; k < all.size(); ++k)
+    if (const auto t = tokens(all[k]); !t.empty()) visit(k + 1, t);
 }
 
 } // namespace

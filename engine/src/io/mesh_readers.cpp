@@ -25,22 +25,7 @@ using text::integer;
 using text::number;
 using text::tokens;
 
-/// Lines without comments (`#` to the end) and without trailing '\r'.
-std::vector<std::string_view> lines(const std::string &text) {
-  std::vector<std::string_view> out;
-  std::string_view all(text);
-  std::size_t start = 0;
-  while (start <= all.size()) {
-    std::size_t end = all.find('\n', start);
-    if (end == std::string_view::npos) end = all.size();
-    std::string_view line = all.substr(start, end - start);
-    if (auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    out.push_back(line);
-    start = end + 1;
-  }
-  return out;
-}
+using text::lines;
 
 /// Fan triangulation of a polygon with at least 3 corners.
 void addPolygon(Mesh &mesh, const std::vector<std::uint32_t> &corners) {

@@ -17,6 +17,23 @@ namespace curvenet {
 inline namespace v1 {
 namespace text {
 
+/// Lines without comments (`#` to the end) and without trailing '\r'.
+inline std::vector<std::string_view> lines(const std::string &text) {
+  std::vector<std::string_view> out;
+  std::string_view all(text);
+  std::size_t start = 0;
+  while (start <= all.size()) {
+    std::size_t end = all.find('\n', start);
+    if (end == std::string_view::npos) end = all.size();
+    std::string_view line = all.substr(start, end - start);
+    if (auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    out.push_back(line);
+    start = end + 1;
+  }
+  return out;
+}
+
 /// Splits into whitespace-separated tokens.
 inline std::vector<std::string_view> tokens(std::string_view line) {
   std::vector<std::string_view> out;
