@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "input_errors.hpp"
 #include "curvenet/builtins.hpp"
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
@@ -20,17 +21,8 @@ namespace curvenet {
 inline namespace v1 {
 namespace {
 
-template <typename F> InputError catchInputError(F &&f) {
-  try {
-    f();
-  } catch (const InputError &e) {
-    return e;
-  }
-  ADD_FAILURE() << "expected an InputError";
-  return InputError("<none>", "<none>", "<none>");
-}
-
-bool contains(const std::string &haystack, const std::string &needle) { return haystack.find(needle) != std::string::npos; }
+using test::catchInputError;
+using test::contains;
 
 Mesh pentagonMesh() {
   return tessellate(Surface::build(Network::build(builtinNetwork("pentagon")), {}), {3, 1});

@@ -16,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include "input_errors.hpp"
 #include "curvenet/builtins.hpp"
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
@@ -31,17 +32,8 @@ namespace fs = std::filesystem;
 const fs::path sharedModels = fs::path(CURVENET_SHARED_DATA_DIR) / "transfinite-models";
 const fs::path testData = fs::path(CURVENET_TEST_DATA_DIR);
 
-template <typename F> InputError catchInputError(F &&f) {
-  try {
-    f();
-  } catch (const InputError &e) {
-    return e;
-  }
-  ADD_FAILURE() << "expected an InputError";
-  return InputError("<none>", "<none>", "<none>");
-}
-
-bool contains(const std::string &haystack, const std::string &needle) { return haystack.find(needle) != std::string::npos; }
+using test::catchInputError;
+using test::contains;
 
 using test::readFile;
 using test::ScratchDir;
