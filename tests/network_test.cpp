@@ -2,6 +2,7 @@
 // Network::build, agree with what the built-in's construction knows.
 #include <gtest/gtest.h>
 
+#include "input_errors.hpp"
 #include "curvenet/builtins.hpp"
 #include "curvenet/error.hpp"
 #include "curvenet/network.hpp"
@@ -73,21 +74,13 @@ TEST(Network, RejectsLoopsWithMoreThanEightSides) {
   // With connection curves (the default) a loop of more than 8 sides is
   // split (tests/split_loops_test.cpp); this one does not close, which is
   // named on the user's face before any split.
-  try {
-    Network::build(d, "nine.json");
-    FAIL() << "expected InputError";
-  } catch (const InputError &e) {
-    EXPECT_EQ(e.file(), "nine.json");
-    EXPECT_EQ(e.element(), "face 0");
-    EXPECT_NE(e.reason().find("does not close"), std::string::npos) << e.reason();
-  }
+  const InputError open = test::catchInputError([&] { Network::build(d, "nine.json"); });
+  EXPECT_EQ(open.file(), "nine.json");
+  EXPECT_EQ(open.element(), "face 0");
+  EXPECT_NE(open.reason().find("does not close"), std::string::npos) << open.reason();
   d.connectionCurves = false;
-  try {
-    Network::build(d, "nine.json");
-    FAIL() << "expected InputError";
-  } catch (const InputError &e) {
-    EXPECT_EQ(e.file(), "nine.json");
-    EXPECT_EQ(e.element(), "face 0");
-    EXPECT_NE(e.reason().find("2 to 8"), std::string::npos);
-  }
+  const InputError refused = test::catchInputError([&] { Network::build(d, "nine.json"); });
+  EXPECT_EQ(refused.file(), "nine.json");
+  EXPECT_EQ(refused.element(), "face 0");
+  EXPECT_NE(refused.reason().find("2 to 8"), std::string::npos) << refused.reason();
 }
