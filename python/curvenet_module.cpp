@@ -279,13 +279,7 @@ public:
                      std::to_string(points.size()) + " points",
                  "invalid-argument", "", "out");
     const std::span<Vec3> positions(reinterpret_cast<Vec3 *>(result.mutable_data()), points.size());
-    Status status;
-    {
-      py::gil_scoped_release unlocked;
-      std::shared_lock shared(lock_);
-      status = model_.evaluatePositions(face, points, positions, batchOptions(threads));
-    }
-    check(status);
+    check(inspect([&] { return model_.evaluatePositions(face, points, positions, batchOptions(threads)); }));
     return result;
   }
 
@@ -293,13 +287,7 @@ public:
     const std::span<const Vec2> points = rows<Vec2>(uv, 2, "uv");
     Evaluation e{py::array_t<double>({static_cast<py::ssize_t>(points.size()), py::ssize_t(4), py::ssize_t(3)})};
     const std::span<SurfacePoint> out(reinterpret_cast<SurfacePoint *>(e.storage.mutable_data()), points.size());
-    Status status;
-    {
-      py::gil_scoped_release unlocked;
-      std::shared_lock shared(lock_);
-      status = model_.evaluate(face, points, out, batchOptions(threads));
-    }
-    check(status);
+    check(inspect([&] { return model_.evaluate(face, points, out, batchOptions(threads)); }));
     return e;
   }
 
@@ -310,13 +298,7 @@ public:
     const std::span<SurfacePoint2> out(reinterpret_cast<SurfacePoint2 *>(e.storage.mutable_data()), points.size());
     BatchOptions batch = batchOptions(threads);
     batch.step = step;
-    Status status;
-    {
-      py::gil_scoped_release unlocked;
-      std::shared_lock shared(lock_);
-      status = model_.evaluateSecondOrder(face, points, out, batch);
-    }
-    check(status);
+    check(inspect([&] { return model_.evaluateSecondOrder(face, points, out, batch); }));
     return e;
   }
 
