@@ -507,12 +507,12 @@ FaceBuild buildFace(const Impl &impl, int f) {
   }
   std::vector<ParabolicRibbon> parabolic;
   if (g2)
-    for (const LinearRibbon &ribbon : ribbons) {
+    parabolic = matchCornerTerms(ribbons, [&](const LinearRibbon &ribbon) {
       std::vector<const TransversalCurvature *> curvatures;
       for (const LinearRibbon::Piece &piece : ribbon.pieces())
         curvatures.push_back(impl.edgeCurvatures[piece.segment].get());
-      parabolic.emplace_back(ribbon, std::move(curvatures));
-    }
+      return ParabolicRibbon(ribbon, std::move(curvatures));
+    });
   result.patch = std::make_shared<const Patch>(std::move(ribbons), impl.options, std::move(parabolic));
   try {
     result.folded = patchFolds(*result.patch);

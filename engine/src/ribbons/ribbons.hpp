@@ -158,6 +158,19 @@ public:
   /// without removing the fold it was aimed at.
   void setEndConditions(const Vec3 &startTarget, const Vec3 &endTarget, ScalarBlend blend = ScalarBlend::Linear);
 
+  /// Second derivatives of α, β at one end (quintic blend only; zero by
+  /// default). They turn T'' within the tangent plane, where the correction
+  /// patch compares it with the neighbouring ribbon's C' (matchCornerTerms);
+  /// T stays in the fence's tangent plane, so G¹ and G² across the side are
+  /// untouched. Each enters through ½ x² (1 − x)⁵ (x the distance in s from
+  /// its end), flat to second order at the far end and small beyond the
+  /// first fifth of the side (≤ 0.0055 there), so the ribbon's interior
+  /// keeps the quintic blend.
+  struct EndCurvature {
+    double alpha = 0, beta = 0;
+  };
+  void setEndCurvatures(const EndCurvature &start, const EndCurvature &end);
+
   const BSplineCurve &curve() const { return curve_; }
   RibbonJet at(double s) const;
   /// at(s[k]) into out[k] for every k (out.size() ≥ s.size()), bit for bit:
@@ -215,6 +228,8 @@ private:
   std::vector<Piece> pieces_;
   /// End values of α, β (linear blend: of the unit frame, see setEndConditions).
   double alpha0_ = 0, alpha1_ = 0, beta0_ = 0, beta1_ = 0;
+  std::array<EndCurvature, 2> endCurvatures_{};
+  bool hasEndCurvatures_ = false;
   ScalarBlend blend_ = ScalarBlend::Linear;
 };
 
@@ -238,6 +253,14 @@ public:
   void at(std::span<const double> s, std::span<ParabolicJet> out) const;
   /// κ_T at s: the normal curvature of the ribbon in the direction of T.
   double crossCurvature(double s) const;
+  /// C = II(T, T) N + Γ − (Γ·N) N with Γ = Σ_ends G_end ½ x² (1 − x)³ (x the
+  /// distance in s from that end): Γ'' = G at each end, Γ and Γ' zero there
+  /// (by default G = 0: C normal). Only C·N enters the surface's curvature
+  /// across the side, so this tangential part is free; it changes C'' at
+  /// the ends, which the correction patch compares with the neighbouring
+  /// ribbon's (W₂₂, matchCornerTerms).
+  void setEndTangentialCurvatures(const Vec3 &start, const Vec3 &end);
+
   /// Correction-patch data at s = 0 and s = 1 (C'' by a fourth-order
   /// one-sided difference of the exact C' with step 1e-3; everything else exact).
   const SideEndData &start() const { return start_; }
@@ -254,8 +277,41 @@ private:
   ParabolicJet jet(double s, const std::array<Vec3, 4> &curve) const;
   LinearRibbon linear_;
   std::vector<const TransversalCurvature *> curvatures_;
+  std::array<Vec3, 2> tangentialCurvatures_{};
+  bool hasTangential_ = false;
   SideEndData start_, end_;
 };
+
+/// Parabolic ribbons over a face's linear ribbons (`linear`, in loop order;
+/// `build` makes one over a linear ribbon) whose high-order corner terms
+/// disagree less in the tangent plane.
+///
+/// The nine-term correction patch (Patch, [SV14] eq. 22) blends at each
+/// corner the derivatives ∂_s^p ∂_t^q (p, q ≤ 2) of the two ribbons meeting
+/// there, and its rational terms carry their differences into the interior.
+/// The normal parts of W₂₁, W₁₂, W₂₂ are fixed by the shared edge data (the
+/// fences and transversal curvatures), but their tangential parts are each
+/// face's own choice of parameterization. Two of them are met here: T'' of
+/// each ribbon is moved halfway towards the other ribbon's C' (W₂₁ =
+/// T_i''(0) against −C_{i−1}'(1), W₁₂ = T_{i−1}''(1) against C_i'(0)) through
+/// α'', β'' (LinearRibbon::setEndCurvatures, which changes `linear`), and
+/// the two C'' meet halfway (W₂₂) through the tangential part of C
+/// (ParabolicRibbon::setEndTangentialCurvatures).
+///
+/// What was measured to choose this (gregory-g2, reference deviation max):
+/// with these two, `pentagon` 0.104 → 0.095 %, `sphere-dodecahedron`
+/// 0.312 → 0.291 %, `saddle-nodes` folds 4 → 3, and of the robustness
+/// corpus's tangents turned by 1° 9 → 2 faces fold. Matching every
+/// tangential part (also the twists W₁₁ through α', β', C through the
+/// neighbouring curve's P'' for W₂₀, W₀₂, and C' for W₂₁, W₁₂) leaves one
+/// `saddle-nodes` fold but multiplies the deviation of `pentagon` by
+/// 3.8–4.6 (any change of the twists does: 0.39–0.57 %) and folds 8 of the 1°
+/// corpus faces; it does not unfold `pocket3sided.lop` either, which still
+/// folds with every corner term made equal (its parabolic ribbons
+/// themselves reach too far: |C| up to 269 at a corner of a face about 100
+/// across).
+std::vector<ParabolicRibbon> matchCornerTerms(std::vector<LinearRibbon> &linear,
+                                              const std::function<ParabolicRibbon(const LinearRibbon &)> &build);
 
 } // namespace v1
 } // namespace curvenet
