@@ -284,32 +284,33 @@ private:
 
 /// Parabolic ribbons over a face's linear ribbons (`linear`, in loop order;
 /// `build` makes one over a linear ribbon) whose high-order corner terms
-/// disagree less in the tangent plane.
+/// agree in the tangent plane.
 ///
 /// The nine-term correction patch (Patch, [SV14] eq. 22) blends at each
 /// corner the derivatives ∂_s^p ∂_t^q (p, q ≤ 2) of the two ribbons meeting
 /// there, and its rational terms carry their differences into the interior.
 /// The normal parts of W₂₁, W₁₂, W₂₂ are fixed by the shared edge data (the
 /// fences and transversal curvatures), but their tangential parts are each
-/// face's own choice of parameterization. Two of them are met here: T'' of
-/// each ribbon is moved halfway towards the other ribbon's C' (W₂₁ =
-/// T_i''(0) against −C_{i−1}'(1), W₁₂ = T_{i−1}''(1) against C_i'(0)) through
-/// α'', β'' (LinearRibbon::setEndCurvatures, which changes `linear`), and
-/// the two C'' meet halfway (W₂₂) through the tangential part of C
+/// face's own choice of parameterization. Here T'' of each ribbon takes the
+/// other ribbon's C' in the tangent plane (W₂₁ = T_i''(0) against
+/// −C_{i−1}'(1), W₁₂ = T_{i−1}''(1) against C_i'(0)) through α'', β''
+/// (LinearRibbon::setEndCurvatures, which changes `linear`), and the two C''
+/// meet halfway (W₂₂) through the tangential part of C
 /// (ParabolicRibbon::setEndTangentialCurvatures).
 ///
 /// What was measured to choose this (gregory-g2, reference deviation max):
-/// with these two, `pentagon` 0.104 → 0.095 %, `sphere-dodecahedron`
-/// 0.312 → 0.291 %, `saddle-nodes` folds 4 → 3, and of the robustness
-/// corpus's tangents turned by 1° 9 → 2 faces fold. Matching every
-/// tangential part (also the twists W₁₁ through α', β', C through the
-/// neighbouring curve's P'' for W₂₀, W₀₂, and C' for W₂₁, W₁₂) leaves one
+/// `pentagon` 0.104 → 0.089 %, `sphere-dodecahedron` 0.312 → 0.271 %,
+/// `saddle-nodes` folds 4 → 3, and of the robustness corpus's tangents
+/// turned by 1° no face folds (9 did; diagonal ratio 1.090 → 1.033). T''
+/// moved only halfway towards C' gives 0.095 %, 0.291 % and 2 folded faces
+/// at 1°. Matching every tangential part (also the twists W₁₁ through α',
+/// β', C through the neighbouring curve's P'' for W₂₀, W₀₂) leaves one
 /// `saddle-nodes` fold but multiplies the deviation of `pentagon` by
-/// 3.8–4.6 (any change of the twists does: 0.39–0.57 %) and folds 8 of the 1°
-/// corpus faces; it does not unfold `pocket3sided.lop` either, which still
-/// folds with every corner term made equal (its parabolic ribbons
-/// themselves reach too far: |C| up to 269 at a corner of a face about 100
-/// across).
+/// 3.8–4.6 (any change of the twists does: 0.28 % for half of it, 0.46 %
+/// for all) and folds 8 of the 1° corpus faces. None of this unfolds
+/// `pocket3sided.lop`, which still folds with every corner term made equal
+/// (its parabolic ribbons themselves reach too far: |C| up to 269 at a
+/// corner of a face about 100 across).
 std::vector<ParabolicRibbon> matchCornerTerms(std::vector<LinearRibbon> &linear,
                                               const std::function<ParabolicRibbon(const LinearRibbon &)> &build);
 
