@@ -331,6 +331,45 @@ TEST(Kernels, DomainFramesAndBlendsAgreeAcrossWidthsAndWithDualArithmetic) {
   }
 }
 
+TEST(Kernels, SweepGradientsAgreeAcrossWidthsAndWithTheDomainsImplicitDerivative) {
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (int n = 4; n <= 8; ++n) {
+    const RegularDomain domain(n);
+    const ck::DomainSides sides = domainSides(domain);
+    std::vector<double> u, v;
+    while (u.size() < kCount) {
+      const Vec2 q{unit(rng), unit(rng)};
+      bool inside = true;
+      for (int i = 0; i < n && inside; ++i) inside = domain.perpendicularDistance(i, q.x, q.y).v > 0;
+      if (inside) u.push_back(q.x), v.push_back(q.y);
+    }
+    for (int side : {0, n - 1}) {
+      std::vector<double> x(kCount), y(kCount), root(kCount), distance(kCount), du(kCount), dv(kCount);
+      std::vector<double> expectedU(kCount), expectedV(kCount);
+      std::array<double *, 8> xs{}, ys{};
+      for (int i = 0; i < n; ++i) xs[i] = i == side ? x.data() : distance.data(), ys[i] = i == side ? y.data() : du.data();
+      ck::sideFrames(kCount, sides, u.data(), v.data(), xs.data(), ys.data(), ck::kScalarReference);
+      ck::hermiteSweepRoots(kCount, domain.sweepFrame(side), x.data(), y.data(), root.data(), distance.data());
+      // The independent form: the domain's implicit differentiation in Dual arithmetic.
+      for (size_t k = 0; k < kCount; ++k) {
+        const Dual s = domain.hermiteSweepFromRoot(side, Dual::u(u[k]), Dual::vCoord(v[k]), root[k]).s;
+        expectedU[k] = s.du, expectedV[k] = s.dv;
+      }
+      for (const auto &w : ck::availableWidths()) {
+        SCOPED_TRACE(w.name + ", n = " + std::to_string(n) + ", side " + std::to_string(side));
+        std::fill(du.begin(), du.end(), NAN), std::fill(dv.begin(), dv.end(), NAN);
+        ck::hermiteSweepGradients(kCount, domain.sweepFrame(side), sides.ex[side], sides.ey[side], x.data(), y.data(),
+                                  root.data(), du.data(), dv.data(), w.id);
+        // Relative to the gradient's size: on a square's axis-parallel side one partial is 0.
+        std::vector<double> got = du, expected = expectedU;
+        got.insert(got.end(), dv.begin(), dv.end()), expected.insert(expected.end(), expectedV.begin(), expectedV.end());
+        EXPECT_LT(relativeDifference(got, expected), 1e-12);
+      }
+    }
+  }
+}
+
 TEST(Kernels, GregoryPositionsAgreeAcrossWidthsAndWithTheFormula) {
   std::mt19937_64 rng(11);
   for (bool parabolic : {false, true})

@@ -29,6 +29,13 @@ struct SweepArgs {
   const double *x, *y;
   double *s, *d;
 };
+
+struct SweepGradientArgs {
+  ck::SweepFrame frame;
+  double ex, ey;
+  const double *x, *y, *s;
+  double *du, *dv;
+};
 } // namespace curvenet::kernels_impl
 #endif
 
@@ -372,6 +379,35 @@ template <class D> HWY_INLINE std::size_t sweepFastThenRobust(D d, std::size_t c
   return total;
 }
 
+template <class D> HWY_INLINE void sweepGradientBody(D d, std::size_t k, const SweepGradientArgs &a) {
+  using V = hn::Vec<D>;
+  const ck::SweepFrame &f = a.frame;
+  const V one = hn::Set(d, 1.0), two = hn::Set(d, 2.0), three = hn::Set(d, 3.0), six = hn::Set(d, 6.0);
+  const V r = hn::LoadU(d, a.s + k), x = hn::LoadU(d, a.x + k), y = hn::LoadU(d, a.y + k), q = hn::Sub(one, r);
+  // w(s) = a H(s) + b H(1 − s) and w'(s), H(s) = 2s³ − 3s² + 1.
+  const V r2 = hn::Mul(r, r), q2 = hn::Mul(q, q);
+  const V h0 = hn::Add(hn::Sub(hn::Mul(two, hn::Mul(r2, r)), hn::Mul(three, r2)), one);
+  const V h1 = hn::Add(hn::Sub(hn::Mul(two, hn::Mul(q2, q)), hn::Mul(three, q2)), one);
+  const V d0 = hn::Sub(hn::Mul(six, r2), hn::Mul(six, r)), d1 = hn::Sub(hn::Mul(six, q2), hn::Mul(six, q));
+  const V ax = hn::Set(d, f.ax), ay = hn::Set(d, f.ay), bx = hn::Set(d, f.bx), by = hn::Set(d, f.by);
+  const V wx = hn::Add(hn::Mul(ax, h0), hn::Mul(bx, h1)), wy = hn::Add(hn::Mul(ay, h0), hn::Mul(by, h1));
+  const V slopeX = hn::Sub(hn::Mul(ax, d0), hn::Mul(bx, d1)), slopeY = hn::Sub(hn::Mul(ay, d0), hn::Mul(by, d1));
+  // F_s = −w_y + (x − s) w_y' − y w_x'.
+  const V Fs = hn::Sub(hn::Add(hn::Neg(wy), hn::Mul(hn::Sub(x, r), slopeY)), hn::Mul(y, slopeX));
+  const auto regular = hn::Ne(Fs, hn::Zero(d));
+  const V inverse = hn::IfThenElseZero(regular, hn::Div(one, hn::IfThenElse(regular, Fs, one)));
+  const V sx = hn::Mul(hn::Neg(wy), inverse), sy = hn::Mul(wx, inverse);
+  const V ex = hn::Set(d, a.ex), ey = hn::Set(d, a.ey);
+  hn::StoreU(hn::Sub(hn::Mul(sx, ex), hn::Mul(sy, ey)), d, a.du + k);
+  hn::StoreU(hn::Add(hn::Mul(sx, ey), hn::Mul(sy, ex)), d, a.dv + k);
+}
+
+void SweepGradients(std::size_t count, const SweepGradientArgs &args, bool reference) {
+  auto body = [&](auto d, std::size_t k) { sweepGradientBody(d, k, args); };
+  if (reference) forEachVector(hn::CappedTag<double, 1>(), count, body);
+  else forEachVector(hn::ScalableTag<double>(), count, body);
+}
+
 std::size_t SweepRoots(std::size_t count, const SweepArgs &args, bool reference) {
   if (reference) return sweepFastThenRobust(hn::CappedTag<double, 1>(), count, args);
   return sweepFastThenRobust(hn::ScalableTag<double>(), count, args);
@@ -393,6 +429,7 @@ namespace curvenet {
 namespace kernels_impl {
 HWY_EXPORT(SweepRoots);
 HWY_EXPORT(SweepRootsRobust);
+HWY_EXPORT(SweepGradients);
 } // namespace kernels_impl
 
 inline namespace v1 {
@@ -411,6 +448,13 @@ void hermiteSweepRootsRobust(std::size_t count, const SweepFrame &frame, const d
   bool reference;
   const std::size_t index = tableIndex(width, reference);
   HWY_DISPATCH_TABLE(SweepRootsRobust)[index](count, {frame, x, y, s, d}, reference);
+}
+
+void hermiteSweepGradients(std::size_t count, const SweepFrame &frame, double ex, double ey, const double *x,
+                           const double *y, const double *s, double *du, double *dv, std::int64_t width) {
+  bool reference;
+  const std::size_t index = tableIndex(width, reference);
+  HWY_DISPATCH_TABLE(SweepGradients)[index](count, {frame, ex, ey, x, y, s, du, dv}, reference);
 }
 
 } // namespace kernels

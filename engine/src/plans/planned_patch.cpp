@@ -133,8 +133,8 @@ void forCompositeRibbonChunks(int n, std::size_t count, const double *u, const d
 
 
 /// Per chunk of evaluateJets, structure of arrays of `count` samples: x, y
-/// (snapped points), the cubic Hermite roots of the side at hand, then for
-/// every side its parameter (value, ∂u, ∂v), its frame coordinates and the
+/// (snapped points), the root solver's distances of the side at hand, then
+/// for every side its parameter (value, ∂u, ∂v), its frame coordinates and the
 /// corner blend (value, ∂u, ∂v).
 struct JetColumns {
   int sides = 0;
@@ -142,17 +142,16 @@ struct JetColumns {
   std::vector<double> data;
   void reset(int n, std::size_t samples) {
     sides = n, count = samples;
-    data.resize(static_cast<std::size_t>(8 * n + 4) * samples);
+    data.resize(static_cast<std::size_t>(8 * n + 3) * samples);
   }
   double *at(std::size_t array) { return data.data() + array * count; }
   double *x() { return at(0); }
   double *y() { return at(1); }
-  double *root() { return at(2); }
-  double *unused() { return at(3); } // the root solver's second output
-  double *side(int i, int c) { return at(4 + 3 * static_cast<std::size_t>(i) + c); }
-  double *fx(int i) { return at(4 + 3 * static_cast<std::size_t>(sides) + i); }
-  double *fy(int i) { return at(4 + 4 * static_cast<std::size_t>(sides) + i); }
-  double *blend(int i, int c) { return at(4 + 3 * static_cast<std::size_t>(sides + i) + 2 * sides + c); }
+  double *unused() { return at(2); } // the root solver's second output
+  double *side(int i, int c) { return at(3 + 3 * static_cast<std::size_t>(i) + c); }
+  double *fx(int i) { return at(3 + 3 * static_cast<std::size_t>(sides) + i); }
+  double *fy(int i) { return at(3 + 4 * static_cast<std::size_t>(sides) + i); }
+  double *blend(int i, int c) { return at(3 + 3 * static_cast<std::size_t>(sides + i) + 2 * sides + c); }
 };
 
 /// Side i's frame unit: e = (p_{i+1} − p_i) / |p_{i+1} − p_i|². The frame
@@ -202,20 +201,8 @@ void radialSweepJets(const RegularDomain &domain, int i, JetColumns &c) {
 void cubicHermiteSweepJets(const RegularDomain &domain, int i, JetColumns &c) {
   const kernels::SweepFrame &frame = domain.sweepFrame(i);
   const Vec2 e = sideFrameAxis(domain, i);
-  const double *fx = c.fx(i), *fy = c.fy(i);
-  double *root = c.root();
-  double *s[3] = {c.side(i, 0), c.side(i, 1), c.side(i, 2)};
-  kernels::hermiteSweepRoots(c.count, frame, fx, fy, root, c.unused());
-  for (std::size_t k = 0; k < c.count; ++k) {
-    const double r = root[k], q = 1 - r;
-    const double h0 = 2 * r * r * r - 3 * r * r + 1, h1 = 2 * q * q * q - 3 * q * q + 1;
-    const double d0 = 6 * r * r - 6 * r, d1 = 6 * q * q - 6 * q;
-    const double wx = frame.ax * h0 + frame.bx * h1, wy = frame.ay * h0 + frame.by * h1;
-    const double slopeX = frame.ax * d0 - frame.bx * d1, slopeY = frame.ay * d0 - frame.by * d1;
-    const double Fs = -wy + (fx[k] - r) * slopeY - fy[k] * slopeX;
-    const double sx = Fs != 0 ? -wy / Fs : 0, sy = Fs != 0 ? wx / Fs : 0;
-    s[0][k] = r, s[1][k] = sx * e.x - sy * e.y, s[2][k] = sx * e.y + sy * e.x;
-  }
+  kernels::hermiteSweepRoots(c.count, frame, c.fx(i), c.fy(i), c.side(i, 0), c.unused());
+  kernels::hermiteSweepGradients(c.count, frame, e.x, e.y, c.fx(i), c.fy(i), c.side(i, 0), c.side(i, 1), c.side(i, 2));
 }
 
 } // namespace

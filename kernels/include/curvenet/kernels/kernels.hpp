@@ -277,6 +277,14 @@ struct SweepFrame {
 std::size_t hermiteSweepRoots(std::size_t count, const SweepFrame &frame, const double *x, const double *y, double *s,
                               double *d, std::int64_t width = kBestWidth);
 
+/// (c) The gradient over the domain of the roots s that hermiteSweepRoots
+/// gave at (x, y), by implicit differentiation of F(s; x, y) = 0: ∂s/∂x =
+/// −w_y / F_s, ∂s/∂y = w_x / F_s (both 0 where F_s = 0), carried to (u, v)
+/// through the side's axis (ex, ey) as DomainSides gives it: du[k] = ∂s/∂x
+/// ex − ∂s/∂y ey, dv[k] = ∂s/∂x ey + ∂s/∂y ex.
+void hermiteSweepGradients(std::size_t count, const SweepFrame &frame, double ex, double ey, const double *x,
+                           const double *y, const double *s, double *du, double *dv, std::int64_t width = kBestWidth);
+
 /// The robust solver alone, for checks and comparisons: every root on
 /// [0, 1] isolated by the derivative cascade F'' → F' → F (monotone pieces,
 /// each bisected to the last bit), then the selection rule above. About 15×
