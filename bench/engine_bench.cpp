@@ -6,6 +6,10 @@
 //     tables are built inside the timing)
 //   BatchPositions/<scheme>/<model>: Surface::evaluatePositions at random
 //     domain points of face 0 (sweepline roots solved per point)
+//   BatchJets/<scheme>/<model>: the same points with du, dv and normals
+//     (Surface::evaluate on spans)
+//   TessellateCpu/<scheme>/<model>/r256/t1: the warm one-thread
+//     tessellation on CPU time (the others of its kind on wall time)
 //   Kernel<Name>/<width>
 // Each reports a points-per-second counter (items/s).
 #include <benchmark/benchmark.h>
@@ -69,7 +73,10 @@ void evaluateBench(benchmark::State &state, Scheme scheme, std::string model, in
   state.counters["points"] = static_cast<double>(points);
 }
 
-void batchPositionsBench(benchmark::State &state, Scheme scheme, std::string model) {
+/// 65 536 random points of face 0's domain in one batch, positions alone
+/// (Surface::evaluatePositions) or with du, dv and normals (the jets:
+/// Surface::evaluate on spans).
+void batchBench(benchmark::State &state, Scheme scheme, std::string model, bool jets) {
   const Surface &surface = surfaceFor(model, scheme);
   const int n = surface.domainSides(0);
   std::mt19937_64 rng(1);
@@ -82,10 +89,16 @@ void batchPositionsBench(benchmark::State &state, Scheme scheme, std::string mod
     p = surface.domainCorner(0, k) * a + surface.domainCorner(0, k + 1) * b;
   }
   std::vector<Vec3> out(uv.size());
+  std::vector<SurfacePoint> points(jets ? uv.size() : 0);
   surface.evaluatePositions(0, uv, out); // the face's ribbon tables
   for (auto _ : state) {
-    surface.evaluatePositions(0, uv, out);
-    benchmark::DoNotOptimize(out.data());
+    if (jets) {
+      surface.evaluate(0, uv, points);
+      benchmark::DoNotOptimize(points.data());
+    } else {
+      surface.evaluatePositions(0, uv, out);
+      benchmark::DoNotOptimize(out.data());
+    }
   }
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * uv.size()));
 }
@@ -280,8 +293,16 @@ int registerAll() {
                                      evaluateBench, scheme, std::string("pentagon"), 256, cold, threads)
             ->Unit(benchmark::kMillisecond)
             ->UseRealTime();
-    benchmark::RegisterBenchmark(("BatchPositions/" + std::string(name) + "/pentagon").c_str(), batchPositionsBench,
-                                 scheme, std::string("pentagon"))
+    benchmark::RegisterBenchmark(("BatchPositions/" + std::string(name) + "/pentagon").c_str(), batchBench, scheme,
+                                 std::string("pentagon"), false)
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("BatchJets/" + std::string(name) + "/pentagon").c_str(), batchBench, scheme,
+                                 std::string("pentagon"), true)
+        ->Unit(benchmark::kMillisecond);
+    // One thread on CPU time: the rate of the work itself on a machine
+    // shared with other jobs, where wall-clock rates fall with their load.
+    benchmark::RegisterBenchmark(("TessellateCpu/" + std::string(name) + "/pentagon/r256/t1").c_str(), tessellateBench,
+                                 scheme, std::string("pentagon"), 256, false, 1)
         ->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("SurfaceBuild/" + std::string(name) + "/ellipsoid-truncated-icosahedron").c_str(),
                                  surfaceBuildBench, scheme, std::string("ellipsoid-truncated-icosahedron"), 0)

@@ -259,6 +259,117 @@ std::array<double, 3> gregoryFormula(const ck::GregorySamples &in, const ck::Gre
 
 } // namespace
 
+// ---- domain frames and corner blends ----------------------------------------
+
+/// The regular n-gon's sides for the domain kernels.
+ck::DomainSides domainSides(const RegularDomain &domain) {
+  ck::DomainSides sides;
+  sides.sides = domain.sides();
+  for (int i = 0; i < domain.sides(); ++i) {
+    const Vec2 p = domain.corner(i), edge = domain.corner(i + 1) - p, axis = edge / dot(edge, edge);
+    sides.px[i] = p.x, sides.py[i] = p.y, sides.ex[i] = axis.x, sides.ey[i] = axis.y;
+  }
+  return sides;
+}
+
+TEST(Kernels, DomainFramesAndBlendsAgreeAcrossWidthsAndWithDualArithmetic) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (int n = 3; n <= 8; ++n) {
+    const RegularDomain domain(n);
+    const ck::DomainSides sides = domainSides(domain);
+    std::vector<double> u, v;
+    while (u.size() < kCount) {
+      const Vec2 q{unit(rng), unit(rng)};
+      bool inside = true;
+      for (int i = 0; i < n && inside; ++i) inside = domain.perpendicularDistance(i, q.x, q.y).v > 0;
+      if (inside) u.push_back(q.x), v.push_back(q.y);
+    }
+    // The independent form: the domain's own frames and cornerProducts in Dual arithmetic.
+    for (int exponent : {2, 3}) {
+      std::vector<double> frameX(n * kCount), frameY(n * kCount), blend(3 * n * kCount);
+      for (size_t k = 0; k < kCount; ++k) {
+        std::array<Dual, ck::DomainSides::kMaxSides> powered{}, products{};
+        for (int i = 0; i < n; ++i) {
+          Dual x, y;
+          domain.sideFrame(i, Dual::u(u[k]), Dual::vCoord(v[k]), x, y);
+          frameX[i * kCount + k] = x.v, frameY[i * kCount + k] = y.v;
+          powered[i] = exponent == 3 ? y * y * y : y * y;
+        }
+        const Dual total = domain.cornerProducts(powered, products);
+        for (int i = 0; i < n; ++i) {
+          const Dual b = products[i] / total;
+          blend[(3 * i) * kCount + k] = b.v, blend[(3 * i + 1) * kCount + k] = b.du,
+                                 blend[(3 * i + 2) * kCount + k] = b.dv;
+        }
+      }
+      for (const auto &w : ck::availableWidths()) {
+        SCOPED_TRACE(w.name + ", n = " + std::to_string(n) + ", exponent " + std::to_string(exponent));
+        Soa xy(2 * n, kCount), out(3 * n, kCount), values(n, kCount);
+        std::array<double *, 8> x{}, y{}, b{}, bu{}, bv{}, alone{};
+        for (int i = 0; i < n; ++i)
+          x[i] = xy[i], y[i] = xy[n + i], b[i] = out[3 * i], bu[i] = out[3 * i + 1], bv[i] = out[3 * i + 2],
+          alone[i] = values[i];
+        ck::sideFrames(kCount, sides, u.data(), v.data(), x.data(), y.data(), w.id);
+        ck::cornerBlends(kCount, sides, exponent, y.data(), b.data(), bu.data(), bv.data(), w.id);
+        ck::cornerBlends(kCount, sides, exponent, y.data(), alone.data(), nullptr, nullptr, w.id);
+        std::vector<double> gotX(xy[0], xy[0] + n * kCount), gotY(xy[n], xy[n] + n * kCount);
+        EXPECT_LT(relativeDifference(gotX, frameX), 1e-14);
+        EXPECT_LT(relativeDifference(gotY, frameY), 1e-14);
+        for (int i = 0; i < n; ++i)
+          for (int c = 0; c < 3; ++c) {
+            const double *expected = blend.data() + (3 * i + c) * kCount;
+            EXPECT_LT(relativeDifference({out[3 * i + c], out[3 * i + c] + kCount}, {expected, expected + kCount}), 1e-12)
+                << "blend " << i << " component " << c;
+          }
+        for (int i = 0; i < n; ++i) {
+          const double *expected = blend.data() + 3 * i * kCount;
+          EXPECT_LT(relativeDifference({values[i], values[i] + kCount}, {expected, expected + kCount}), 1e-13);
+        }
+      }
+    }
+  }
+}
+
+TEST(Kernels, SweepGradientsAgreeAcrossWidthsAndWithTheDomainsImplicitDerivative) {
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (int n = 4; n <= 8; ++n) {
+    const RegularDomain domain(n);
+    const ck::DomainSides sides = domainSides(domain);
+    std::vector<double> u, v;
+    while (u.size() < kCount) {
+      const Vec2 q{unit(rng), unit(rng)};
+      bool inside = true;
+      for (int i = 0; i < n && inside; ++i) inside = domain.perpendicularDistance(i, q.x, q.y).v > 0;
+      if (inside) u.push_back(q.x), v.push_back(q.y);
+    }
+    for (int side : {0, n - 1}) {
+      std::vector<double> x(kCount), y(kCount), root(kCount), distance(kCount), du(kCount), dv(kCount);
+      std::vector<double> expectedU(kCount), expectedV(kCount);
+      std::array<double *, 8> xs{}, ys{};
+      for (int i = 0; i < n; ++i) xs[i] = i == side ? x.data() : distance.data(), ys[i] = i == side ? y.data() : du.data();
+      ck::sideFrames(kCount, sides, u.data(), v.data(), xs.data(), ys.data(), ck::kScalarReference);
+      ck::hermiteSweepRoots(kCount, domain.sweepFrame(side), x.data(), y.data(), root.data(), distance.data());
+      // The independent form: the domain's implicit differentiation in Dual arithmetic.
+      for (size_t k = 0; k < kCount; ++k) {
+        const Dual s = domain.hermiteSweepFromRoot(side, Dual::u(u[k]), Dual::vCoord(v[k]), root[k]).s;
+        expectedU[k] = s.du, expectedV[k] = s.dv;
+      }
+      for (const auto &w : ck::availableWidths()) {
+        SCOPED_TRACE(w.name + ", n = " + std::to_string(n) + ", side " + std::to_string(side));
+        std::fill(du.begin(), du.end(), NAN), std::fill(dv.begin(), dv.end(), NAN);
+        ck::hermiteSweepGradients(kCount, domain.sweepFrame(side), sides.ex[side], sides.ey[side], x.data(), y.data(),
+                                  root.data(), du.data(), dv.data(), w.id);
+        // Relative to the gradient's size: on a square's axis-parallel side one partial is 0.
+        std::vector<double> got = du, expected = expectedU;
+        got.insert(got.end(), dv.begin(), dv.end()), expected.insert(expected.end(), expectedV.begin(), expectedV.end());
+        EXPECT_LT(relativeDifference(got, expected), 1e-12);
+      }
+    }
+  }
+}
+
 TEST(Kernels, GregoryPositionsAgreeAcrossWidthsAndWithTheFormula) {
   std::mt19937_64 rng(11);
   for (bool parabolic : {false, true})

@@ -3,7 +3,7 @@
 // dual numbers (value and the two domain partials) lane by lane; for points
 // alone only the values are stored, and the partials' arithmetic, never
 // read, is dropped by the compiler. Compiled once per target
-// (foreach_target), dispatched at run time like kernels.cpp.
+// (foreach_target), dispatched at run time like the other kernel sources.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "composite.cpp"
 #include <hwy/foreach_target.h> // IWYU pragma: keep

@@ -133,27 +133,25 @@ void forCompositeRibbonChunks(int n, std::size_t count, const double *u, const d
 
 
 /// Per chunk of evaluateJets, structure of arrays of `count` samples: x, y
-/// (snapped points), the frame coordinates fx, fy and cubic Hermite roots of
-/// the side at hand, then for every side its parameter (value, ∂u, ∂v), its
-/// distance power and the corner blend (value, ∂u, ∂v).
+/// (snapped points), the root solver's distances of the side at hand, then
+/// for every side its parameter (value, ∂u, ∂v), its frame coordinates and the
+/// corner blend (value, ∂u, ∂v).
 struct JetColumns {
   int sides = 0;
   std::size_t count = 0;
   std::vector<double> data;
   void reset(int n, std::size_t samples) {
     sides = n, count = samples;
-    data.resize(static_cast<std::size_t>(9 * n + 6) * samples);
+    data.resize(static_cast<std::size_t>(8 * n + 3) * samples);
   }
   double *at(std::size_t array) { return data.data() + array * count; }
   double *x() { return at(0); }
   double *y() { return at(1); }
-  double *fx() { return at(2); }
-  double *fy() { return at(3); }
-  double *root() { return at(4); }
-  double *unused() { return at(5); } // the root solver's second output
-  double *side(int i, int c) { return at(6 + 3 * static_cast<std::size_t>(i) + c); }
-  double *power(int i, int c) { return at(6 + 3 * static_cast<std::size_t>(sides + i) + c); }
-  double *blend(int i, int c) { return at(6 + 3 * static_cast<std::size_t>(2 * sides + i) + c); }
+  double *unused() { return at(2); } // the root solver's second output
+  double *side(int i, int c) { return at(3 + 3 * static_cast<std::size_t>(i) + c); }
+  double *fx(int i) { return at(3 + 3 * static_cast<std::size_t>(sides) + i); }
+  double *fy(int i) { return at(3 + 4 * static_cast<std::size_t>(sides) + i); }
+  double *blend(int i, int c) { return at(3 + 3 * static_cast<std::size_t>(sides + i) + 2 * sides + c); }
 };
 
 /// Side i's frame unit: e = (p_{i+1} − p_i) / |p_{i+1} − p_i|². The frame
@@ -164,19 +162,15 @@ Vec2 sideFrameAxis(const RegularDomain &domain, int i) {
   return edge / dot(edge, edge);
 }
 
-/// Side i's frame coordinates fx, fy of every sample, and its distance power
-/// Δ_i^m for the blends (m = 3 for G², 2 for G¹) with its gradient.
-void sideDistancePowerJets(const RegularDomain &domain, int i, bool g2, JetColumns &c) {
-  const Vec2 p = domain.corner(i), e = sideFrameAxis(domain, i);
-  double *x = c.x(), *y = c.y(), *fx = c.fx(), *fy = c.fy();
-  double *power[3] = {c.power(i, 0), c.power(i, 1), c.power(i, 2)};
-  for (std::size_t k = 0; k < c.count; ++k) {
-    const double qx = x[k] - p.x, qy = y[k] - p.y;
-    fx[k] = qx * e.x + qy * e.y, fy[k] = qy * e.x - qx * e.y;
-    const double squared = fy[k] * fy[k];
-    const double slope = g2 ? 3 * squared : 2 * fy[k];
-    power[0][k] = g2 ? squared * fy[k] : squared, power[1][k] = -slope * e.y, power[2][k] = slope * e.x;
+/// The domain's sides as the frame and blend kernels take them.
+kernels::DomainSides kernelSides(const RegularDomain &domain) {
+  kernels::DomainSides sides;
+  sides.sides = domain.sides();
+  for (int i = 0; i < domain.sides(); ++i) {
+    const Vec2 p = domain.corner(i), e = sideFrameAxis(domain, i);
+    sides.px[i] = p.x, sides.py[i] = p.y, sides.ex[i] = e.x, sides.ey[i] = e.y;
   }
+  return sides;
 }
 
 /// Side i's radial sweep parameter from the frame coordinates: the closed
@@ -185,7 +179,7 @@ void sideDistancePowerJets(const RegularDomain &domain, int i, bool g2, JetColum
 void radialSweepJets(const RegularDomain &domain, int i, JetColumns &c) {
   const kernels::SweepFrame &frame = domain.sweepFrame(i);
   const Vec2 e = sideFrameAxis(domain, i);
-  const double *fx = c.fx(), *fy = c.fy();
+  const double *fx = c.fx(i), *fy = c.fy(i);
   double *s[3] = {c.side(i, 0), c.side(i, 1), c.side(i, 2)};
   for (std::size_t k = 0; k < c.count; ++k) {
     double sx, sy;
@@ -207,53 +201,8 @@ void radialSweepJets(const RegularDomain &domain, int i, JetColumns &c) {
 void cubicHermiteSweepJets(const RegularDomain &domain, int i, JetColumns &c) {
   const kernels::SweepFrame &frame = domain.sweepFrame(i);
   const Vec2 e = sideFrameAxis(domain, i);
-  const double *fx = c.fx(), *fy = c.fy();
-  double *root = c.root();
-  double *s[3] = {c.side(i, 0), c.side(i, 1), c.side(i, 2)};
-  kernels::hermiteSweepRoots(c.count, frame, fx, fy, root, c.unused());
-  for (std::size_t k = 0; k < c.count; ++k) {
-    const double r = root[k], q = 1 - r;
-    const double h0 = 2 * r * r * r - 3 * r * r + 1, h1 = 2 * q * q * q - 3 * q * q + 1;
-    const double d0 = 6 * r * r - 6 * r, d1 = 6 * q * q - 6 * q;
-    const double wx = frame.ax * h0 + frame.bx * h1, wy = frame.ay * h0 + frame.by * h1;
-    const double slopeX = frame.ax * d0 - frame.bx * d1, slopeY = frame.ay * d0 - frame.by * d1;
-    const double Fs = -wy + (fx[k] - r) * slopeY - fy[k] * slopeX;
-    const double sx = Fs != 0 ? -wy / Fs : 0, sy = Fs != 0 ? wx / Fs : 0;
-    s[0][k] = r, s[1][k] = sx * e.x - sy * e.y, s[2][k] = sx * e.y + sy * e.x;
-  }
-}
-
-/// Corner blends B_{i,i−1} = ∏_{j∉{i,i−1}} Δ_j^m / Σ_k ∏_{j∉{k,k−1}} Δ_j^m
-/// with their gradients from the distance powers, products in
-/// RegularDomain::cornerProducts' order. Overwrites the frame coordinates
-/// and roots (no longer needed) with the denominator.
-void cornerBlendJets(const RegularDomain &domain, JetColumns &c) {
-  const int n = c.sides;
-  const std::size_t m = c.count;
-  double *total[3] = {c.fx(), c.fy(), c.root()};
-  for (int t = 0; t < 3; ++t) std::fill(total[t], total[t] + m, 0.0);
-  for (int i = 0; i < n; ++i) {
-    double *b[3] = {c.blend(i, 0), c.blend(i, 1), c.blend(i, 2)};
-    std::fill(b[0], b[0] + m, 1.0), std::fill(b[1], b[1] + m, 0.0), std::fill(b[2], b[2] + m, 0.0);
-    for (int j = 0; j < n; ++j) {
-      if (j == i || j == domain.wrap(i - 1)) continue;
-      const double *pv = c.power(j, 0), *pu = c.power(j, 1), *pw = c.power(j, 2);
-      for (std::size_t k = 0; k < m; ++k) {
-        const double value = b[0][k];
-        b[0][k] = value * pv[k], b[1][k] = b[1][k] * pv[k] + value * pu[k], b[2][k] = b[2][k] * pv[k] + value * pw[k];
-      }
-    }
-    for (int t = 0; t < 3; ++t)
-      for (std::size_t k = 0; k < m; ++k) total[t][k] += b[t][k];
-  }
-  for (int i = 0; i < n; ++i) {
-    double *b[3] = {c.blend(i, 0), c.blend(i, 1), c.blend(i, 2)};
-    for (std::size_t k = 0; k < m; ++k) {
-      // The quotient as Dual's: a true division for the value, one reciprocal for the partials.
-      const double q = b[0][k] / total[0][k], inverse = 1 / total[0][k];
-      b[0][k] = q, b[1][k] = (b[1][k] - q * total[1][k]) * inverse, b[2][k] = (b[2][k] - q * total[2][k]) * inverse;
-    }
-  }
+  kernels::hermiteSweepRoots(c.count, frame, c.fx(i), c.fy(i), c.side(i, 0), c.unused());
+  kernels::hermiteSweepGradients(c.count, frame, e.x, e.y, c.fx(i), c.fy(i), c.side(i, 0), c.side(i, 1), c.side(i, 2));
 }
 
 } // namespace
@@ -522,65 +471,34 @@ void Patch::evaluatePositions(std::size_t count, const double *u, const double *
     std::vector<double> data;
     double *at(std::size_t array) { return data.data() + array * count; }
   };
+  const kernels::DomainSides sides = kernelSides(domain_);
   thread_local Frames scratch;
   for (std::size_t first = 0; first < count; first += kChunk) {
     const std::size_t m = std::min(kChunk, count - first);
     scratch.count = m;
-    scratch.data.resize(static_cast<std::size_t>(4 * n + 2) * m);
-    std::array<const double *, kMaxSides> side, blend;
-    double *x = scratch.at(4 * n), *y = scratch.at(4 * n + 1);
+    scratch.data.resize(static_cast<std::size_t>(4 * n + 1) * m);
+    // Per side: its parameter, its frame coordinates (y the perpendicular
+    // distance Δ_i of the blends) and its corner blend.
+    std::array<double *, kMaxSides> side, x, y, blend;
+    for (int i = 0; i < n; ++i)
+      side[i] = scratch.at(i), x[i] = scratch.at(n + i), y[i] = scratch.at(2 * n + i), blend[i] = scratch.at(3 * n + i);
+    kernels::sideFrames(m, sides, u + first, v + first, x.data(), y.data());
     for (int i = 0; i < n; ++i) {
-      // Side i's frame: the side from (0, 0) to (1, 0), the domain at y > 0;
-      // y is the perpendicular distance Δ_i of the blends.
-      const Vec2 p = domain_.corner(i), e = domain_.corner(i + 1) - p;
-      const double inverse = 1 / dot(e, e);
-      double *s = scratch.at(i), *distance = scratch.at(n + i), *power = scratch.at(2 * n + i);
-      for (std::size_t k = 0; k < m; ++k) {
-        const double qx = u[first + k] - p.x, qy = v[first + k] - p.y;
-        x[k] = (qx * e.x + qy * e.y) * inverse, y[k] = (qy * e.x - qx * e.y) * inverse;
-        distance[k] = y[k];
-        power[k] = g2 ? y[k] * y[k] * y[k] : y[k] * y[k];
-      }
       const kernels::SweepFrame frame = domain_.sweepFrame(i);
       if (radial) {
         // Closed form: the domain's own formula (as evaluate() uses it) on the frame coordinates.
-        for (std::size_t k = 0; k < m; ++k) s[k] = RegularDomain::radialSideParameter(frame, x[k], y[k]);
-      } else if (!triangle) {
-        double *unused = scratch.at(3 * n + i);
-        kernels::hermiteSweepRoots(m, frame, x, y, s, unused);
+        for (std::size_t k = 0; k < m; ++k) side[i][k] = RegularDomain::radialSideParameter(frame, x[i][k], y[i][k]);
+      } else if (triangle) {
+        // A triangle's sweep is closed-form in the three distances (RegularDomain::triangleSideParameter).
+        const double *previous = y[domain_.wrap(i - 1)], *next = y[domain_.wrap(i + 1)];
+        for (std::size_t k = 0; k < m; ++k) side[i][k] = domain_.triangleSideParameter(previous[k], next[k], y[i][k]);
+      } else {
+        kernels::hermiteSweepRoots(m, frame, x[i], y[i], side[i], scratch.at(4 * n));
       }
-      side[i] = s;
     }
-    // A triangle's sweep is closed-form in the three distances (RegularDomain::triangleSideParameter).
-    if (triangle)
-      for (int i = 0; i < n; ++i) {
-        double *s = scratch.at(i);
-        const double *previous = scratch.at(n + domain_.wrap(i - 1)), *next = scratch.at(n + domain_.wrap(i + 1)),
-                     *own = scratch.at(n + i);
-        for (std::size_t k = 0; k < m; ++k) s[k] = domain_.triangleSideParameter(previous[k], next[k], own[k]);
-      }
     // Corner blends B_{i,i−1} = ∏_{j∉{i,i−1}} Δ_j^m / Σ_k ∏_{j∉{k,k−1}} Δ_j^m, in
     // the product order of RegularDomain::cornerProducts.
-    std::array<double *, kMaxSides> product;
-    for (int i = 0; i < n; ++i) product[i] = scratch.at(3 * n + i);
-    for (int i = 0; i < n; ++i) {
-      double *b = product[i];
-      std::fill(b, b + m, 1.0);
-      for (int j = 0; j < n; ++j) {
-        if (j == i || j == domain_.wrap(i - 1)) continue;
-        const double *power = scratch.at(2 * n + j);
-        for (std::size_t k = 0; k < m; ++k) b[k] *= power[k];
-      }
-    }
-    double *total = x; // the frame coordinates are no longer needed
-    std::fill(total, total + m, 0.0);
-    for (int i = 0; i < n; ++i)
-      for (std::size_t k = 0; k < m; ++k) total[k] += product[i][k];
-    for (std::size_t k = 0; k < m; ++k) total[k] = 1 / total[k];
-    for (int i = 0; i < n; ++i) {
-      for (std::size_t k = 0; k < m; ++k) product[i][k] *= total[k];
-      blend[i] = product[i];
-    }
+    kernels::cornerBlends(m, sides, g2 ? 3 : 2, y.data(), blend.data(), nullptr, nullptr);
     gregoryPositionsFrom(m, side.data(), blend.data(), out.from(first));
   }
 }
@@ -798,6 +716,7 @@ void Patch::evaluateJets(std::size_t count, const double *u, const double *v, Du
   // opposite corner, where the batched solver's choice of root may part from
   // it); the rest of their formula runs batched all the same.
   const bool pointwiseSweeps = !radial && (quintic || n == 3);
+  const kernels::DomainSides sides = kernelSides(domain_);
   thread_local JetColumns columns;
   for (std::size_t first = 0; first < count; first += kChunk) {
     const std::size_t m = std::min(kChunk, count - first);
@@ -814,16 +733,19 @@ void Patch::evaluateJets(std::size_t count, const double *u, const double *v, Du
           columns.side(i, 0)[k] = s[i].v, columns.side(i, 1)[k] = s[i].du, columns.side(i, 2)[k] = s[i].dv;
       }
     }
+    std::array<double *, kMaxSides> fx, fy, blend[3];
     for (int i = 0; i < n; ++i) {
-      sideDistancePowerJets(domain_, i, g2, columns);
-      if (pointwiseSweeps) continue;
-      if (radial) {
-        radialSweepJets(domain_, i, columns);
-      } else {
-        cubicHermiteSweepJets(domain_, i, columns);
-      }
+      fx[i] = columns.fx(i), fy[i] = columns.fy(i);
+      for (int c = 0; c < 3; ++c) blend[c][i] = columns.blend(i, c);
     }
-    cornerBlendJets(domain_, columns);
+    kernels::sideFrames(m, sides, columns.x(), columns.y(), fx.data(), fy.data());
+    if (!pointwiseSweeps)
+      for (int i = 0; i < n; ++i) {
+        if (radial) radialSweepJets(domain_, i, columns);
+        else cubicHermiteSweepJets(domain_, i, columns);
+      }
+    // Corner blends B_{i,i−1} = ∏_{j∉{i,i−1}} Δ_j^m / Σ_k ∏_{j∉{k,k−1}} Δ_j^m with their gradients.
+    kernels::cornerBlends(m, sides, g2 ? 3 : 2, fy.data(), blend[0].data(), blend[1].data(), blend[2].data());
     gregoryJetsFrom(
         m,
         [&](int i, std::size_t block, std::size_t size, double *const s[3], double *const b[3]) {

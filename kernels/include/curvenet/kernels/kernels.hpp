@@ -220,6 +220,33 @@ void compositeRibbonPositions(std::size_t count, const CompositeSamples &samples
 void compositeRibbonJets(std::size_t count, const CompositeSamples &samples, const GregoryCorner *left,
                          const GregoryCorner *right, DualVec3Span out, std::int64_t width = kBestWidth);
 
+/// The sides of a regular domain polygon for the batched blends: side i
+/// runs from corner (px[i], py[i]) to the next, with axis (ex[i], ey[i]) =
+/// its edge / |edge|², so that its frame (the side from (0, 0) to (1, 0),
+/// the domain at y > 0) is x = (u − px) ex + (v − py) ey, y = (v − py) ex −
+/// (u − px) ey: affine in (u, v), ∂(x, y)/∂u = (ex, −ey), ∂/∂v = (ey, ex).
+struct DomainSides {
+  static constexpr int kMaxSides = 8;
+  int sides = 0; ///< 3 … 8
+  double px[kMaxSides] = {}, py[kMaxSides] = {}, ex[kMaxSides] = {}, ey[kMaxSides] = {};
+};
+
+/// (a) Every side's frame coordinates at the points (u[k], v[k]): x[i][k]
+/// along side i (its sweep's input), y[i][k] the distance parameter Δ_i.
+void sideFrames(std::size_t count, const DomainSides &domain, const double *u, const double *v, double *const *x,
+                double *const *y, std::int64_t width = kBestWidth);
+
+/// (b) Corner blends from the distances y[i] of sideFrames: B_i = Π_{j∉{i,
+/// i−1}} Δ_j^m / Σ_k Π_{j∉{k, k−1}} Δ_j^m, m = `exponent` (2 for G¹, 3 for
+/// G²), products in ascending j as RegularDomain::cornerProducts takes them.
+/// When blendDu and blendDv are not null, also ∂B_i/∂u and ∂B_i/∂v (the
+/// quotient rule with one reciprocal; the value a true division). Without
+/// them the value is the product times the sum's reciprocal. Samples where
+/// every product vanishes (not inside a domain) give NaN.
+void cornerBlends(std::size_t count, const DomainSides &domain, int exponent, const double *const *y,
+                  double *const *blend, double *const *blendDu, double *const *blendDv,
+                  std::int64_t width = kBestWidth);
+
 /// Constants of one side of a regular domain for the cubic Hermite sweepline
 /// ([SV14] eq. 20) in that side's frame (side from (0,0) to (1,0), domain
 /// at y > 0): a, b the directions of the neighbouring sides leaving the two
@@ -249,6 +276,14 @@ struct SweepFrame {
 /// Returns how many points needed the robust solver.
 std::size_t hermiteSweepRoots(std::size_t count, const SweepFrame &frame, const double *x, const double *y, double *s,
                               double *d, std::int64_t width = kBestWidth);
+
+/// (c) The gradient over the domain of the roots s that hermiteSweepRoots
+/// gave at (x, y), by implicit differentiation of F(s; x, y) = 0: ∂s/∂x =
+/// −w_y / F_s, ∂s/∂y = w_x / F_s (both 0 where F_s = 0), carried to (u, v)
+/// through the side's axis (ex, ey) as DomainSides gives it: du[k] = ∂s/∂x
+/// ex − ∂s/∂y ey, dv[k] = ∂s/∂x ey + ∂s/∂y ex.
+void hermiteSweepGradients(std::size_t count, const SweepFrame &frame, double ex, double ey, const double *x,
+                           const double *y, const double *s, double *du, double *dv, std::int64_t width = kBestWidth);
 
 /// The robust solver alone, for checks and comparisons: every root on
 /// [0, 1] isolated by the derivative cascade F'' → F' → F (monotone pieces,

@@ -1,0 +1,216 @@
+// The Gregory formula with its exact first derivatives over the domain
+// (gregoryJets of curvenet/kernels/kernels.hpp): product, quotient and chain
+// rules through the ribbons and the rational weights in one pass. Written
+// once over a Highway descriptor D (CappedTag<double, 1> the width-1 scalar
+// reference); compiled once per target (foreach_target), dispatched at run
+// time.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "gregory_jets.cpp"
+#include <hwy/foreach_target.h> // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include "gregory-inl.h"
+#include "loops-inl.h"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "curvenet/kernels/kernels.hpp"
+#include "dispatch.hpp"
+
+// Argument bundles, shared by every target's instance (defined once).
+#ifndef CURVENET_GREGORY_JET_ARGS
+#define CURVENET_GREGORY_JET_ARGS
+namespace curvenet::kernels_impl {
+namespace ck = curvenet::kernels;
+struct GregoryJetArgs {
+  const ck::GregoryJetSamples *in;
+  const ck::GregoryCorner *corners;
+  ck::DualVec3Span out;
+  const ck::GregoryCornerTerms *terms; ///< per corner, G² only
+};
+} // namespace curvenet::kernels_impl
+#endif
+
+HWY_BEFORE_NAMESPACE();
+namespace curvenet {
+namespace kernels_impl {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+namespace ck = curvenet::kernels;
+
+/// A value with its two domain partials, in registers.
+template <class V> struct DualV {
+  V v, u, w; // value, ∂/∂u, ∂/∂v
+};
+
+template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size_t k, const GregoryJetArgs &a) {
+  using V = hn::Vec<D>;
+  const ck::GregoryJetSamples &in = *a.in;
+  const ck::GregorySamples &val = in.values;
+  const int n = val.sides;
+  const V one = hn::Set(d, 1.0), half = hn::Set(d, 0.5);
+  V acc[3][3]; // [value, du, dv][x, y, z]
+  for (auto &row : acc)
+    for (V &x : row) x = hn::Zero(d);
+  auto load = [&](const double *p) { return hn::LoadU(d, p + k); };
+  for (int i = 0; i < n; ++i) {
+    const int prev = i == 0 ? n - 1 : i - 1;
+    const DualV<V> s{load(val.s[i]), load(in.sDu[i]), load(in.sDv[i])};
+    const DualV<V> sp{load(val.s[prev]), load(in.sDu[prev]), load(in.sDv[prev])};
+    const DualV<V> t{hn::Sub(one, sp.v), hn::Neg(sp.u), hn::Neg(sp.w)};
+    const DualV<V> blend{load(val.blend[i]), load(in.blendDu[i]), load(in.blendDv[i])};
+    // I = R_{i−1}(σ = s_{i−1}, δ = s) + R_i(σ = s, δ = t) − Q; for R(σ, δ):
+    // value P + δT [+ ½δ²C], ∂ = σ' (P' + δT' [+ ½δ²C']) + δ' (T [+ δC]).
+    V term[3][3];
+    const V hs2 = hn::Mul(half, hn::Mul(s.v, s.v)), ht2 = hn::Mul(half, hn::Mul(t.v, t.v));
+    for (int c = 0; c < 3; ++c) {
+      V lv = hn::MulAdd(s.v, load(val.T[prev][c]), load(val.P[prev][c]));
+      V lslope = hn::MulAdd(s.v, load(in.dT[prev][c]), load(in.dP[prev][c]));
+      V lacross = load(val.T[prev][c]);
+      V rv = hn::MulAdd(t.v, load(val.T[i][c]), load(val.P[i][c]));
+      V rslope = hn::MulAdd(t.v, load(in.dT[i][c]), load(in.dP[i][c]));
+      V racross = load(val.T[i][c]);
+      if constexpr (Parabolic) {
+        const V lc = load(val.C[prev][c]), rc = load(val.C[i][c]);
+        lv = hn::MulAdd(hs2, lc, lv), rv = hn::MulAdd(ht2, rc, rv);
+        lslope = hn::MulAdd(hs2, load(in.dC[prev][c]), lslope), rslope = hn::MulAdd(ht2, load(in.dC[i][c]), rslope);
+        lacross = hn::MulAdd(s.v, lc, lacross), racross = hn::MulAdd(t.v, rc, racross);
+      }
+      term[0][c] = hn::Add(lv, rv);
+      term[1][c] = hn::MulAdd(sp.u, lslope, hn::MulAdd(s.u, lacross, hn::MulAdd(s.u, rslope, hn::Mul(t.u, racross))));
+      term[2][c] = hn::MulAdd(sp.w, lslope, hn::MulAdd(s.w, lacross, hn::MulAdd(s.w, rslope, hn::Mul(t.w, racross))));
+    }
+    const V zero = hn::Zero(d);
+    if constexpr (Parabolic) {
+      // Q in the form of GregoryCornerTerms with its partials in s and t:
+      // Q = Σ s^p t^r taylor[p][r] + Σ_j ρ_j rational[j], ρ_j = s³ t^r / (s^{3−p} + t^{3−r}),
+      //   ∂ρ/∂s = s² t^r (3 t^{3−r} + p s^{3−p}) / den²,
+      //   ∂ρ/∂t = s³ t^{r−1} (r s^{3−p} + (2r − 3) t^{3−r}) / den²  (r = 0: −3 s³ t² / den²),
+      // then the chain rule through s and t once per corner, not per term.
+      V sp3[4], tp3[4], inv[8];
+      g2CornerWeights(d, s.v, t.v, sp3, tp3, inv);
+      const ck::GregoryCornerTerms &terms = a.terms[i];
+      V q[3][3]; // [value, ∂/∂s, ∂/∂t][x, y, z]
+      const V two = hn::Set(d, 2.0);
+      for (int c = 0; c < 3; ++c) {
+        V h[3], dh[3];
+        for (int p = 0; p <= 2; ++p) {
+          const V t0 = hn::Set(d, terms.taylor[p][0][c]), t1 = hn::Set(d, terms.taylor[p][1][c]);
+          const V t2 = hn::Set(d, terms.taylor[p][2][c]);
+          h[p] = hn::MulAdd(t.v, hn::MulAdd(t.v, t2, t1), t0);
+          dh[p] = hn::MulAdd(hn::Mul(two, t.v), t2, t1);
+        }
+        q[0][c] = hn::MulAdd(s.v, hn::MulAdd(s.v, h[2], h[1]), h[0]);
+        q[1][c] = hn::MulAdd(hn::Mul(two, s.v), h[2], h[1]);
+        q[2][c] = hn::MulAdd(s.v, hn::MulAdd(s.v, dh[2], dh[1]), dh[0]);
+      }
+      // s^2 t^r and s^3 t^r for r = 0, 1, 2, shared by the rows p.
+      const V s2t[3] = {sp3[2], hn::Mul(sp3[2], tp3[1]), hn::Mul(sp3[2], tp3[2])};
+      const V s3t[3] = {sp3[3], hn::Mul(sp3[3], tp3[1]), hn::Mul(sp3[3], tp3[2])};
+      int j = 0;
+      for (int p = 0; p <= 2; ++p)
+        for (int r = 0; r <= 2; ++r) {
+          if (!p && !r) continue;
+          const V x = sp3[3 - p], y = tp3[3 - r], i1 = inv[j], i2 = hn::Mul(i1, i1);
+          const V rho = hn::Mul(s3t[r], i1);
+          const V rhoS = hn::Mul(hn::Mul(s2t[r], hn::MulAdd(hn::Set(d, p), x, hn::Mul(hn::Set(d, 3.0), y))), i2);
+          const V rhoT =
+              r ? hn::Mul(hn::Mul(s3t[r - 1], hn::MulAdd(hn::Set(d, r), x, hn::Mul(hn::Set(d, 2 * r - 3), y))), i2)
+                : hn::Mul(hn::Mul(hn::Set(d, -3.0), hn::Mul(sp3[3], tp3[2])), i2);
+          for (int c = 0; c < 3; ++c) {
+            const V R = hn::Set(d, terms.rational[j][c]);
+            q[0][c] = hn::MulAdd(rho, R, q[0][c]);
+            q[1][c] = hn::MulAdd(rhoS, R, q[1][c]);
+            q[2][c] = hn::MulAdd(rhoT, R, q[2][c]);
+          }
+          ++j;
+        }
+      for (int c = 0; c < 3; ++c) {
+        term[0][c] = hn::Sub(term[0][c], q[0][c]);
+        term[1][c] = hn::NegMulAdd(q[1][c], s.u, hn::NegMulAdd(q[2][c], t.u, term[1][c]));
+        term[2][c] = hn::NegMulAdd(q[1][c], s.w, hn::NegMulAdd(q[2][c], t.w, term[2][c]));
+      }
+    } else {
+      // − f W(a, b; x, y) with W = wa a + (1 − wa) b, wa = x / (x + y), x = x(s),
+      // y = y(t): fs, ft the partials of f, xs = dx/ds, yt = dy/dt, r = 1/(x + y).
+      const double(*vec)[3] = a.corners[i].v;
+      auto subtract = [&](V f, V fs, V ft, V x, V xs, V y, V yt, V r, int slot) {
+        const V wa = hn::Mul(x, r), r2 = hn::Mul(r, r);
+        const V A = hn::Mul(hn::Mul(xs, y), r2), B = hn::Mul(hn::Mul(x, yt), r2);
+        const V waU = hn::NegMulAdd(B, t.u, hn::Mul(A, s.u)), waV = hn::NegMulAdd(B, t.w, hn::Mul(A, s.w));
+        const V fU = hn::MulAdd(ft, t.u, hn::Mul(fs, s.u)), fV = hn::MulAdd(ft, t.w, hn::Mul(fs, s.w));
+        const V fa = hn::Mul(f, wa);
+        const V faU = hn::MulAdd(fU, wa, hn::Mul(f, waU)), faV = hn::MulAdd(fV, wa, hn::Mul(f, waV));
+        const V fb = hn::Sub(f, fa), fbU = hn::Sub(fU, faU), fbV = hn::Sub(fV, faV);
+        for (int c = 0; c < 3; ++c) {
+          const V va = hn::Set(d, vec[slot][c]), vb = hn::Set(d, vec[slot + 1][c]);
+          term[0][c] = hn::NegMulAdd(fa, va, hn::NegMulAdd(fb, vb, term[0][c]));
+          term[1][c] = hn::NegMulAdd(faU, va, hn::NegMulAdd(fbU, vb, term[1][c]));
+          term[2][c] = hn::NegMulAdd(faV, va, hn::NegMulAdd(fbV, vb, term[2][c]));
+        }
+      };
+      for (int c = 0; c < 3; ++c) term[0][c] = hn::Sub(term[0][c], hn::Set(d, vec[0][c]));
+      const V s2 = hn::Mul(s.v, s.v), t2 = hn::Mul(t.v, t.v), two = hn::Set(d, 2.0);
+      V den[3] = {hn::Add(s.v, t2), hn::Add(s2, t.v), hn::Add(s.v, t.v)};
+      reciprocals(d, den);
+      // s W(a10, b10; s, t²), t W(a01, b01; s², t), s t W(a11, b11; s, t).
+      subtract(s.v, one, zero, s.v, one, t2, hn::Mul(two, t.v), den[0], 1);
+      subtract(t.v, zero, one, s2, hn::Mul(two, s.v), t.v, one, den[1], 3);
+      subtract(hn::Mul(s.v, t.v), t.v, s.v, s.v, one, t.v, one, den[2], 5);
+    }
+    for (int c = 0; c < 3; ++c) {
+      acc[0][c] = hn::MulAdd(blend.v, term[0][c], acc[0][c]);
+      acc[1][c] = hn::MulAdd(blend.u, term[0][c], hn::MulAdd(blend.v, term[1][c], acc[1][c]));
+      acc[2][c] = hn::MulAdd(blend.w, term[0][c], hn::MulAdd(blend.v, term[2][c], acc[2][c]));
+    }
+  }
+  for (int c = 0; c < 3; ++c) {
+    hn::StoreU(acc[0][c], d, a.out.v[c] + k);
+    hn::StoreU(acc[1][c], d, a.out.du[c] + k);
+    hn::StoreU(acc[2][c], d, a.out.dv[c] + k);
+  }
+}
+
+void GregoryJets(std::size_t count, const GregoryJetArgs &args, bool reference) {
+  auto run = [&](auto tag) {
+    if (args.in->values.parabolic)
+      forEachVector(tag, count, [&](auto d, std::size_t k) { gregoryJetBody<true>(d, k, args); });
+    else forEachVector(tag, count, [&](auto d, std::size_t k) { gregoryJetBody<false>(d, k, args); });
+  };
+  if (reference) run(hn::CappedTag<double, 1>());
+  else run(hn::ScalableTag<double>());
+}
+
+} // namespace HWY_NAMESPACE
+} // namespace kernels_impl
+} // namespace curvenet
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace curvenet {
+namespace kernels_impl {
+HWY_EXPORT(GregoryJets);
+} // namespace kernels_impl
+
+inline namespace v1 {
+namespace kernels {
+using namespace curvenet::kernels_impl;
+
+void gregoryJets(std::size_t count, const GregoryJetSamples &samples, const GregoryCorner *corners, DualVec3Span out,
+                 std::int64_t width, const GregoryCornerTerms *terms) {
+  bool reference;
+  const std::size_t index = tableIndex(width, reference);
+  std::array<GregoryCornerTerms, GregorySamples::kMaxSides> computed;
+  if (samples.values.parabolic && !terms) {
+    for (int i = 0; i < samples.values.sides; ++i) computed[i] = gregoryCornerTerms(corners[i]);
+    terms = computed.data();
+  }
+  HWY_DISPATCH_TABLE(GregoryJets)[index](count, {&samples, corners, out, terms}, reference);
+}
+
+} // namespace kernels
+} // namespace v1
+} // namespace curvenet
+#endif

@@ -1,0 +1,312 @@
+// Ribbon-table evaluation of curvenet/kernels/kernels.hpp (evaluateTable):
+// each sample's interval looked up in the table's cell grid, then its
+// degree-5 polynomials and their slopes. Written once over a Highway
+// descriptor D (CappedTag<double, 1> the width-1 scalar reference);
+// compiled once per target (foreach_target), dispatched at run time.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "table.cpp"
+#include <hwy/foreach_target.h> // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include <cstddef>
+#include <cstdint>
+
+#include "curvenet/kernels/kernels.hpp"
+#include "dispatch.hpp"
+
+// Argument bundles, shared by every target's instance (defined once).
+#ifndef CURVENET_TABLE_ARGS
+#define CURVENET_TABLE_ARGS
+namespace curvenet::kernels_impl {
+namespace ck = curvenet::kernels;
+struct TableArgs {
+  const ck::PolynomialTable *table;
+  const double *s;
+  double *const *values, *const *slopes;
+};
+} // namespace curvenet::kernels_impl
+#endif
+
+HWY_BEFORE_NAMESPACE();
+namespace curvenet {
+namespace kernels_impl {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+namespace ck = curvenet::kernels;
+
+/// The interval of s (see PolynomialTable): its grid cell's first, then at
+/// most `steps` forward moves, branch-free (the grid is fine enough).
+HWY_INLINE std::size_t tableInterval(const ck::PolynomialTable &tb, double s) {
+  // Out of [0, 1] (or NaN) clamps to the end cells before any conversion.
+  const double scaled = s * static_cast<double>(tb.cells);
+  const std::size_t cell = !(scaled > 0) ? 0
+                           : scaled < static_cast<double>(tb.cells) ? static_cast<std::size_t>(scaled)
+                                                                    : tb.cells - 1;
+  std::size_t j = tb.cellFirst[cell];
+  // One step at most: the first interval's end is stored with the cell.
+  if (tb.cellFirstEnd) return j + (tb.cellFirstEnd[cell] < s);
+  for (int q = 0; q < tb.steps; ++q) j += (j + 1 < tb.intervals) & (tb.ends[j] < s);
+  return j;
+}
+
+/// One sample's coordinates x .. x + lanes − 1 (value, and d/ds when
+/// Slopes) over D, whose lanes run across the coordinates; c points at the
+/// sample's interval, t is its local parameter.
+template <bool Slopes, class D, class V = hn::Vec<D>>
+HWY_INLINE void tablePolynomial(D d, const double *c, std::size_t row, V t, V inverseWidth, V &value, V &slope) {
+  const V c0 = hn::LoadU(d, c), c1 = hn::LoadU(d, c + row), c2 = hn::LoadU(d, c + 2 * row);
+  const V c3 = hn::LoadU(d, c + 3 * row), c4 = hn::LoadU(d, c + 4 * row), c5 = hn::LoadU(d, c + 5 * row);
+  value = hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(c5, t, c4), t, c3), t, c2), t, c1), t, c0);
+  if constexpr (Slopes) {
+    const V dv = hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::Mul(hn::Set(d, 5.0), c5), t, hn::Mul(hn::Set(d, 4.0), c4)),
+                                                  t, hn::Mul(hn::Set(d, 3.0), c3)),
+                                       t, hn::Add(c2, c2)),
+                            t, c1);
+    slope = hn::Mul(dv, inverseWidth);
+  }
+}
+
+/// The intervals of s[k .. end) into interval, local (the local parameter)
+/// and, when Inverse, inverse (the interval's 1 / width), `end − k` ≤ 64.
+/// Apart from the polynomials, the lookups' chains of dependent loads
+/// overlap with one another instead of stalling the polynomial work behind
+/// each sample's lookup; out of line, with the table's arrays in locals, the
+/// loop keeps everything in registers. With cellFirstEnd, the cells four at
+/// a time (tableInterval's clamping: NaN and s ≤ 0 to the first cell, s ≥ 1
+/// to the last), then one read per cell; else through tableInterval.
+template <bool Inverse, class D>
+HWY_NOINLINE void tableLookups(D d, const ck::PolynomialTable &tb, const double *HWY_RESTRICT s, std::size_t k,
+                               std::size_t end, std::size_t *HWY_RESTRICT interval, double *HWY_RESTRICT local,
+                               double *HWY_RESTRICT inverse) {
+  using V = hn::Vec<D>;
+  const double *HWY_RESTRICT starts = tb.starts, *HWY_RESTRICT inverseWidths = tb.inverseWidths;
+  std::size_t q = k;
+  if (tb.cellFirstEnd) {
+    const std::uint32_t *HWY_RESTRICT first = tb.cellFirst;
+    const double *HWY_RESTRICT firstEnd = tb.cellFirstEnd;
+    HWY_ALIGN std::int64_t cellOf[64];
+    const hn::RebindToSigned<D> di;
+    const V scale = hn::Set(d, static_cast<double>(tb.cells)), last = hn::Set(d, static_cast<double>(tb.cells - 1));
+    std::size_t vectorEnd = k;
+    for (; vectorEnd + 4 <= end; vectorEnd += 4) {
+      const V scaled = hn::Mul(hn::LoadU(d, s + vectorEnd), scale);
+      const V cell = hn::Min(hn::IfThenElseZero(hn::Gt(scaled, hn::Zero(d)), scaled), last);
+      hn::Store(hn::ConvertTo(di, cell), di, cellOf + (vectorEnd - k));
+    }
+    for (; q < vectorEnd; ++q) {
+      const double x = s[q];
+      const auto cell = static_cast<std::size_t>(cellOf[q - k]);
+      const std::size_t j = first[cell] + (firstEnd[cell] < x);
+      const double w = inverseWidths[j];
+      interval[q - k] = j, local[q - k] = (x - starts[j]) * w;
+      if constexpr (Inverse) inverse[q - k] = w;
+    }
+  }
+  for (; q < end; ++q) {
+    const double x = s[q];
+    const std::size_t j = tableInterval(tb, x);
+    const double w = inverseWidths[j];
+    interval[q - k] = j, local[q - k] = (x - starts[j]) * w;
+    if constexpr (Inverse) inverse[q - k] = w;
+  }
+}
+
+#if HWY_TARGET != HWY_SCALAR
+/// The 4 × 4 transpose: r[q][c] → column c = (r[0][c], …, r[3][c]), for
+/// the first kUsed columns.
+template <std::size_t kUsed = 4, class D, class V = hn::Vec<D>>
+HWY_INLINE void transpose4(D d, const V (&r)[4], V (&column)[4]) {
+  const V t0 = hn::InterleaveLower(d, r[0], r[1]), t1 = hn::InterleaveUpper(d, r[0], r[1]);
+  const V t2 = hn::InterleaveLower(d, r[2], r[3]), t3 = hn::InterleaveUpper(d, r[2], r[3]);
+  column[0] = hn::ConcatLowerLower(d, t2, t0);
+  if constexpr (kUsed > 1) column[1] = hn::ConcatLowerLower(d, t3, t1);
+  if constexpr (kUsed > 2) column[2] = hn::ConcatUpperUpper(d, t2, t0);
+  if constexpr (kUsed > 3) column[3] = hn::ConcatUpperUpper(d, t3, t1);
+}
+
+/// Four samples' four-coordinate vectors r[q] stored as the coordinates'
+/// four-sample vectors out[x + c][k .. k + 4), c < kUsed.
+template <std::size_t kUsed, class D, class V = hn::Vec<D>>
+HWY_INLINE void transposeStore(D d, const V (&r)[4], double *const *out, std::size_t x, std::size_t k) {
+  V column[4];
+  transpose4<kUsed>(d, r, column);
+  for (std::size_t c = 0; c < kUsed; ++c) hn::StoreU(column[c], d, out[x + c] + k);
+}
+
+/// One tail coordinate (see PolynomialTable) of four samples, its lanes
+/// across the samples: each sample's eight doubles at c[q] (t⁰ … t⁵, two
+/// zeros) transposed into the six coefficients' four-sample vectors, then
+/// one polynomial for the four samples at their local parameters t.
+template <bool Slopes, class D, class V = hn::Vec<D>>
+HWY_INLINE void tailPolynomial(D d, const double *const (&c)[4], V t, V inverseWidth, V &value, V &slope) {
+  const V low[4] = {hn::LoadU(d, c[0]), hn::LoadU(d, c[1]), hn::LoadU(d, c[2]), hn::LoadU(d, c[3])};
+  const V high[4] = {hn::LoadU(d, c[0] + 4), hn::LoadU(d, c[1] + 4), hn::LoadU(d, c[2] + 4), hn::LoadU(d, c[3] + 4)};
+  V k[4], k45[4];
+  transpose4(d, low, k);
+  transpose4<2>(d, high, k45);
+  value = hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(k45[1], t, k45[0]), t, k[3]), t, k[2]), t, k[1]), t, k[0]);
+  if constexpr (Slopes) {
+    const V dv = hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::Mul(hn::Set(d, 5.0), k45[1]), t, hn::Mul(hn::Set(d, 4.0), k45[0])),
+                                                  t, hn::Mul(hn::Set(d, 3.0), k[3])),
+                                       t, hn::Add(k[2], k[2])),
+                            t, k[1]);
+    slope = hn::Mul(dv, inverseWidth);
+  }
+}
+
+/// RibbonTable evaluation of four samples at a time over D with four lanes:
+/// the row coordinates with the lanes across the coordinates, the four
+/// samples transposed in registers so that the structure-of-arrays outputs
+/// are written as whole vectors; the tail coordinates with the lanes across
+/// the samples. The layout known at compile time (kRow > 0: the engine's
+/// tables, 6 row coordinates in rows of 8 for G¹ ribbons P, T; 8 and a tail
+/// of 1 for G² P, T, C) unrolls every loop and keeps the output pointers in
+/// registers; kRow = 0 reads it from the table. Returns the samples done (a
+/// multiple of four); the rest is the caller's.
+template <bool Slopes, std::size_t kRowDims, std::size_t kRow, std::size_t kTail, class D>
+HWY_INLINE std::size_t evaluateTableFours(D d, std::size_t count, const TableArgs &a) {
+  using V = hn::Vec<D>;
+  const ck::PolynomialTable &tb = *a.table;
+  const std::size_t rowDims = kRow ? kRowDims : static_cast<std::size_t>(tb.rowDims());
+  const std::size_t row = kRow ? kRow : static_cast<std::size_t>(tb.paddedDims);
+  const std::size_t tail = kRow ? kTail : static_cast<std::size_t>(tb.tailDims());
+  const std::size_t dims = rowDims + tail, block = 6 * row + 8 * tail;
+  constexpr std::size_t kOut = kRow ? kRowDims + kTail : ck::PolynomialTable::kMaxDims;
+  double *values[kOut], *slopes[kOut];
+  for (std::size_t x = 0; x < dims; ++x) values[x] = a.values[x], slopes[x] = Slopes ? a.slopes[x] : nullptr;
+  constexpr std::size_t kChunk = 64;
+  HWY_ALIGN std::size_t interval[kChunk];
+  HWY_ALIGN double local[kChunk], inverse[kChunk];
+  std::size_t k = 0;
+  for (std::size_t chunkStart = 0; chunkStart + 4 <= count; chunkStart += kChunk) {
+    const std::size_t chunkEnd = std::min(count, chunkStart + kChunk);
+    tableLookups<Slopes>(d, tb, a.s, chunkStart, chunkEnd, interval, local, inverse);
+    for (k = chunkStart; k + 4 <= chunkEnd; k += 4) {
+      const double *c[4];
+      V t[4], w[4];
+      for (std::size_t q = 0; q < 4; ++q) {
+        c[q] = tb.coefficients + interval[k - chunkStart + q] * block;
+        t[q] = hn::Set(d, local[k - chunkStart + q]);
+        w[q] = Slopes ? hn::Set(d, inverse[k - chunkStart + q]) : hn::Zero(d); // inverse: only with slopes
+      }
+      auto chunk = [&](std::size_t x, auto used) {
+        V value[4], slope[4];
+        for (int q = 0; q < 4; ++q) tablePolynomial<Slopes>(d, c[q] + x, row, t[q], w[q], value[q], slope[q]);
+        transposeStore<decltype(used)::value>(d, value, values, x, k);
+        if constexpr (Slopes) transposeStore<decltype(used)::value>(d, slope, slopes, x, k);
+      };
+      if constexpr (kRow > 0) {
+        [&]<std::size_t... X>(std::index_sequence<X...>) {
+          (chunk(4 * X, std::integral_constant<std::size_t, std::min<std::size_t>(4, kRowDims - 4 * X)>()), ...);
+        }(std::make_index_sequence<(kRowDims + 3) / 4>());
+      } else {
+        for (std::size_t x = 0; x < rowDims; x += 4) {
+          switch (rowDims - x) {
+          case 1: chunk(x, std::integral_constant<std::size_t, 1>()); break;
+          case 2: chunk(x, std::integral_constant<std::size_t, 2>()); break;
+          case 3: chunk(x, std::integral_constant<std::size_t, 3>()); break;
+          default: chunk(x, std::integral_constant<std::size_t, 4>()); break;
+          }
+        }
+      }
+      if (tail) {
+        const V ts = hn::Load(d, local + (k - chunkStart));
+        const V ws = Slopes ? hn::Load(d, inverse + (k - chunkStart)) : hn::Zero(d);
+        for (std::size_t e = 0; e < tail; ++e) {
+          const std::size_t offset = 6 * row + 8 * e;
+          const double *const at[4] = {c[0] + offset, c[1] + offset, c[2] + offset, c[3] + offset};
+          V value, slope;
+          tailPolynomial<Slopes>(d, at, ts, ws, value, slope);
+          hn::StoreU(value, d, values[rowDims + e] + k);
+          if constexpr (Slopes) hn::StoreU(slope, d, slopes[rowDims + e] + k);
+        }
+      }
+    }
+    if (chunkEnd == count) break;
+  }
+  return k;
+}
+
+#endif
+
+/// RibbonTable evaluation over D, a tag whose lanes run across the
+/// coordinates of one sample: four samples at a time when D has four lanes
+/// (evaluateTableFours), the rest one at a time (the row coordinates a
+/// vector at a time, the tail ones alone).
+template <bool Slopes, class D> HWY_INLINE void evaluateTableWith(D d, std::size_t count, const TableArgs &a) {
+  using V = hn::Vec<D>;
+  const ck::PolynomialTable &tb = *a.table;
+  const std::size_t lanes = hn::Lanes(d), rowDims = static_cast<std::size_t>(tb.rowDims());
+  const std::size_t row = static_cast<std::size_t>(tb.paddedDims), tail = static_cast<std::size_t>(tb.tailDims());
+  const std::size_t block = tb.blockSize();
+  std::size_t k = 0;
+#if HWY_TARGET != HWY_SCALAR
+  if constexpr (hn::MaxLanes(D()) == 4) {
+    if (lanes == 4) {
+      if (rowDims == 8 && row == 8 && tail == 1) k = evaluateTableFours<Slopes, 8, 8, 1>(d, count, a);
+      else if (rowDims == 6 && row == 8 && tail == 0) k = evaluateTableFours<Slopes, 6, 8, 0>(d, count, a);
+      else k = evaluateTableFours<Slopes, 0, 0, 0>(d, count, a);
+    }
+  }
+#endif
+  const hn::CappedTag<double, 1> one;
+  HWY_ALIGN double value[ck::PolynomialTable::kMaxDims], slope[ck::PolynomialTable::kMaxDims];
+  for (; k < count; ++k) {
+    const double s = a.s[k];
+    const std::size_t j = tableInterval(tb, s);
+    const double *c = tb.coefficients + j * block;
+    const V t = hn::Set(d, (s - tb.starts[j]) * tb.inverseWidths[j]), w = hn::Set(d, tb.inverseWidths[j]);
+    for (std::size_t x = 0; x < rowDims; x += lanes) {
+      V v, sl;
+      tablePolynomial<Slopes>(d, c + x, row, t, w, v, sl);
+      hn::Store(v, d, value + x);
+      if constexpr (Slopes) hn::Store(sl, d, slope + x);
+    }
+    for (std::size_t e = 0; e < tail; ++e) {
+      hn::Vec<decltype(one)> v, sl;
+      tablePolynomial<Slopes>(one, c + 6 * row + 8 * e, 1, hn::Set(one, hn::GetLane(t)), hn::Set(one, hn::GetLane(w)), v,
+                              sl);
+      value[rowDims + e] = hn::GetLane(v);
+      if constexpr (Slopes) slope[rowDims + e] = hn::GetLane(sl);
+    }
+    for (std::size_t x = 0; x < rowDims + tail; ++x) a.values[x][k] = value[x];
+    if constexpr (Slopes)
+      for (std::size_t x = 0; x < rowDims + tail; ++x) a.slopes[x][k] = slope[x];
+  }
+}
+
+void EvaluateTable(std::size_t count, const TableArgs &args, bool reference) {
+  auto run = [&](auto tag) {
+    if (args.slopes) evaluateTableWith<true>(tag, count, args);
+    else evaluateTableWith<false>(tag, count, args);
+  };
+  if (reference) run(hn::CappedTag<double, 1>());
+  else run(hn::CappedTag<double, 4>());
+}
+
+} // namespace HWY_NAMESPACE
+} // namespace kernels_impl
+} // namespace curvenet
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace curvenet {
+namespace kernels_impl {
+HWY_EXPORT(EvaluateTable);
+} // namespace kernels_impl
+
+inline namespace v1 {
+namespace kernels {
+using namespace curvenet::kernels_impl;
+
+void evaluateTable(std::size_t count, const PolynomialTable &table, const double *s, double *const *values,
+                   double *const *slopes, std::int64_t width) {
+  bool reference;
+  const std::size_t index = tableIndex(width, reference);
+  HWY_DISPATCH_TABLE(EvaluateTable)[index](count, {&table, s, values, slopes}, reference);
+}
+
+} // namespace kernels
+} // namespace v1
+} // namespace curvenet
+#endif
