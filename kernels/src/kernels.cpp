@@ -399,6 +399,23 @@ template <class D, class V> HWY_INLINE void g2RationalWeights(D d, V s, V t, V (
     }
 }
 
+/// The two-ribbon blend's weight λ = t³ / (s³ + t³) of R_{i−1} at a corner
+/// (GregorySamples::blendShare), ½ at the corner itself; with the partials
+/// ∂λ/∂s = −3 s² t³ / (s³ + t³)², ∂λ/∂t = 3 t² s³ / (s³ + t³)² (0 there).
+template <class D, class V>
+HWY_INLINE V sideBlendWeight(D d, V s, V t, V *bySide = nullptr, V *across = nullptr) {
+  const V s2 = hn::Mul(s, s), t2 = hn::Mul(t, t), s3 = hn::Mul(s2, s), t3 = hn::Mul(t2, t);
+  const V sum = hn::Add(s3, t3);
+  const auto atCorner = hn::Not(hn::Gt(sum, hn::Zero(d)));
+  const V inverse = hn::Div(hn::Set(d, 1.0), hn::Max(sum, hn::Set(d, 1e-300)));
+  if (bySide) {
+    const V three = hn::Set(d, 3.0), inverse2 = hn::Mul(inverse, inverse);
+    *bySide = hn::IfThenZeroElse(atCorner, hn::Neg(hn::Mul(hn::Mul(three, hn::Mul(s2, t3)), inverse2)));
+    *across = hn::IfThenZeroElse(atCorner, hn::Mul(hn::Mul(three, hn::Mul(t2, s3)), inverse2));
+  }
+  return hn::IfThenElse(atCorner, hn::Set(d, 0.5), hn::Mul(t3, inverse));
+}
+
 template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t k, const GregoryArgs &a) {
   using V = hn::Vec<D>;
   const ck::GregorySamples &in = *a.in;
@@ -406,16 +423,30 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t 
   const V one = hn::Set(d, 1.0), half = hn::Set(d, 0.5);
   V side[ck::GregorySamples::kMaxSides], blend[ck::GregorySamples::kMaxSides];
   for (int i = 0; i < n; ++i) side[i] = hn::LoadU(d, in.s[i] + k), blend[i] = hn::LoadU(d, in.blend[i] + k);
+  // Corner i's weights of its two ribbons: B_i for both in eq. 17; with a
+  // blend share μ, B_i (1 − μ (1 − λ)) for R_{i−1} and B_i (1 − μ λ) for R_i.
+  V previousWeight[ck::GregorySamples::kMaxSides], ownWeight[ck::GregorySamples::kMaxSides];
+  for (int i = 0; i < n; ++i) {
+    previousWeight[i] = ownWeight[i] = blend[i];
+    if constexpr (Parabolic) {
+      const double mu = in.blendShare[i];
+      if (mu == 0) continue;
+      const V muLambda = hn::Mul(hn::Set(d, mu), sideBlendWeight(d, side[i], hn::Sub(one, side[i == 0 ? n - 1 : i - 1])));
+      ownWeight[i] = hn::NegMulAdd(blend[i], muLambda, blend[i]);
+      previousWeight[i] = hn::Mul(blend[i], hn::Add(hn::Set(d, 1.0 - mu), muLambda));
+    }
+  }
   V acc[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
   // The ribbon terms gathered per ribbon: R_i enters corner i at δ = t_i =
   // 1 − s_{i−1} with weight B_i and corner i + 1 at δ = s_{i+1} with weight
   // B_{i+1}, so its share is (B_i + B_{i+1}) P_i + (B_i t_i + B_{i+1} s_{i+1}) T_i
   // [+ ½ (B_i t_i² + B_{i+1} s_{i+1}²) C_i]: each ribbon value is read once.
+  // (The weights there are ownWeight[i] and previousWeight[i + 1].)
   for (int i = 0; i < n; ++i) {
     const int prev = i == 0 ? n - 1 : i - 1, next = i + 1 == n ? 0 : i + 1;
     const V t = hn::Sub(one, side[prev]);
-    const V atCorner = hn::Mul(blend[i], t), atNext = hn::Mul(blend[next], side[next]);
-    const V wP = hn::Add(blend[i], blend[next]), wT = hn::Add(atCorner, atNext);
+    const V atCorner = hn::Mul(ownWeight[i], t), atNext = hn::Mul(previousWeight[next], side[next]);
+    const V wP = hn::Add(ownWeight[i], previousWeight[next]), wT = hn::Add(atCorner, atNext);
     V wC = hn::Zero(d);
     if constexpr (Parabolic) wC = hn::Mul(half, hn::MulAdd(atCorner, t, hn::Mul(atNext, side[next])));
     for (int c = 0; c < 3; ++c) {
@@ -424,8 +455,9 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t 
       if constexpr (Parabolic) acc[c] = hn::MulAdd(wC, hn::LoadU(d, in.C[i][c] + k), acc[c]);
     }
   }
-  // − Σ B_i Q_i(s_i, t_i).
+  // − Σ B_i (1 − μ_i) Q_i(s_i, t_i).
   for (int i = 0; i < n; ++i) {
+    if (in.blendShare[i] == 1 && Parabolic) continue;
     const int prev = i == 0 ? n - 1 : i - 1;
     const V s = side[i], t = hn::Sub(one, side[prev]);
     const double(*vec)[3] = a.corners[i].v;
@@ -464,7 +496,8 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t 
       add(t, hn::Mul(s2, den[1]), 3);
       add(hn::Mul(s, t), hn::Mul(s, den[2]), 5);
     }
-    for (int c = 0; c < 3; ++c) acc[c] = hn::NegMulAdd(blend[i], q[c], acc[c]);
+    const V correctionWeight = Parabolic ? hn::Mul(blend[i], hn::Set(d, 1.0 - in.blendShare[i])) : blend[i];
+    for (int c = 0; c < 3; ++c) acc[c] = hn::NegMulAdd(correctionWeight, q[c], acc[c]);
   }
   if (a.interleaved) {
     hn::StoreInterleaved3(hn::Add(acc[0], hn::Set(d, a.offset[0])), hn::Add(acc[1], hn::Set(d, a.offset[1])),
@@ -499,6 +532,18 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
     // value P + δT [+ ½δ²C], ∂ = σ' (P' + δT' [+ ½δ²C']) + δ' (T [+ δC]).
     V term[3][3];
     const V hs2 = hn::Mul(half, hn::Mul(s.v, s.v)), ht2 = hn::Mul(half, hn::Mul(t.v, t.v));
+    // G² blend share μ (GregorySamples::blendShare): the ribbons' weights
+    // 1 − μ (1 − λ) and 1 − μ λ with their partials ±μ ∂λ.
+    const double mu = Parabolic ? val.blendShare[i] : 0.0;
+    DualV<V> previousShare{one, hn::Zero(d), hn::Zero(d)}, ownShare = previousShare;
+    if (Parabolic && mu != 0) {
+      V lambdaS, lambdaT;
+      const V lambda = sideBlendWeight(d, s.v, t.v, &lambdaS, &lambdaT), m = hn::Set(d, mu);
+      const V lambdaU = hn::MulAdd(lambdaS, s.u, hn::Mul(lambdaT, t.u));
+      const V lambdaW = hn::MulAdd(lambdaS, s.w, hn::Mul(lambdaT, t.w));
+      previousShare = {hn::MulAdd(m, lambda, hn::Set(d, 1.0 - mu)), hn::Mul(m, lambdaU), hn::Mul(m, lambdaW)};
+      ownShare = {hn::NegMulAdd(m, lambda, one), hn::Neg(previousShare.u), hn::Neg(previousShare.w)};
+    }
     for (int c = 0; c < 3; ++c) {
       V lv = hn::MulAdd(s.v, load(val.T[prev][c]), load(val.P[prev][c]));
       V lslope = hn::MulAdd(s.v, load(in.dT[prev][c]), load(in.dP[prev][c]));
@@ -512,12 +557,24 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
         lslope = hn::MulAdd(hs2, load(in.dC[prev][c]), lslope), rslope = hn::MulAdd(ht2, load(in.dC[i][c]), rslope);
         lacross = hn::MulAdd(s.v, lc, lacross), racross = hn::MulAdd(t.v, rc, racross);
       }
+      if (Parabolic && mu != 0) {
+        // (1 − μ (1 − λ)) R_{i−1} + (1 − μ λ) R_i with the product rule.
+        const V lu = hn::MulAdd(sp.u, lslope, hn::Mul(s.u, lacross)), lw = hn::MulAdd(sp.w, lslope, hn::Mul(s.w, lacross));
+        const V ru = hn::MulAdd(s.u, rslope, hn::Mul(t.u, racross)), rw = hn::MulAdd(s.w, rslope, hn::Mul(t.w, racross));
+        const V gap = hn::Sub(lv, rv);
+        term[0][c] = hn::MulAdd(previousShare.v, lv, hn::Mul(ownShare.v, rv));
+        term[1][c] = hn::MulAdd(previousShare.v, lu, hn::MulAdd(ownShare.v, ru, hn::Mul(previousShare.u, gap)));
+        term[2][c] = hn::MulAdd(previousShare.v, lw, hn::MulAdd(ownShare.v, rw, hn::Mul(previousShare.w, gap)));
+        continue;
+      }
       term[0][c] = hn::Add(lv, rv);
       term[1][c] = hn::MulAdd(sp.u, lslope, hn::MulAdd(s.u, lacross, hn::MulAdd(s.u, rslope, hn::Mul(t.u, racross))));
       term[2][c] = hn::MulAdd(sp.w, lslope, hn::MulAdd(s.w, lacross, hn::MulAdd(s.w, rslope, hn::Mul(t.w, racross))));
     }
     const V zero = hn::Zero(d);
-    if constexpr (Parabolic) {
+    if (Parabolic && mu == 1) {
+      // The two-ribbon blend alone: no correction patch.
+    } else if constexpr (Parabolic) {
       // Q in the form of GregoryCornerTerms with its partials in s and t:
       // Q = Σ s^p t^r taylor[p][r] + Σ_j ρ_j rational[j], ρ_j = s³ t^r / (s^{3−p} + t^{3−r}),
       //   ∂ρ/∂s = s² t^r (3 t^{3−r} + p s^{3−p}) / den²,
@@ -561,6 +618,11 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
           }
           ++j;
         }
+      if (mu != 0) {
+        const V keep = hn::Set(d, 1.0 - mu);
+        for (auto &row : q)
+          for (V &x : row) x = hn::Mul(keep, x);
+      }
       for (int c = 0; c < 3; ++c) {
         term[0][c] = hn::Sub(term[0][c], q[0][c]);
         term[1][c] = hn::NegMulAdd(q[1][c], s.u, hn::NegMulAdd(q[2][c], t.u, term[1][c]));
