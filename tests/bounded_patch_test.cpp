@@ -181,6 +181,13 @@ TEST(BoundedPatch, TheCorrectionPatchGivesWayOnlyWhereTheRibbonsDisagree) {
     const std::vector<double> shares = allBlendShares(Surface::build(Network::build(builtinNetwork(name), name), g2()));
     EXPECT_EQ(*std::max_element(shares.begin(), shares.end()), 0.0) << name;
   }
+  // gregory-g1: no built-in has an end twist that departs from its side.
+  for (const BuiltinInfo &info : builtinNetworks()) {
+    const std::vector<double> shares =
+        allBlendShares(Surface::build(Network::build(builtinNetwork(info.name), info.name), SurfaceOptions{}));
+    ASSERT_FALSE(shares.empty()) << info.name;
+    EXPECT_EQ(*std::max_element(shares.begin(), shares.end()), 0.0) << info.name;
+  }
   const std::vector<double> saddle =
       allBlendShares(Surface::build(Network::build(builtinNetwork("saddle-nodes"), "saddle-nodes"), g2()));
   const auto partial = std::count_if(saddle.begin(), saddle.end(), [](double mu) { return mu > 0 && mu < 1; });

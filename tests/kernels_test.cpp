@@ -200,7 +200,7 @@ namespace {
 /// Random inputs of the Gregory position kernel: parameters and blends in
 /// [0, 1], ribbon values and corner vectors in [−2, 2], and a sample at
 /// corner 1 (s_1 = 0, s_0 = 1: the rational weights' limit) and one very
-/// near it (the batch inversion's underflow fallback). With `shares`, G²
+/// near it (the batch inversion's underflow fallback). With `shares`, the
 /// corners take blend shares 1, 0 and random ones in between.
 struct RandomGregoryInput {
   Soa s, blend, P, T, C;
@@ -226,10 +226,11 @@ struct RandomGregoryInput {
   }
 };
 
-/// The two-ribbon blend's weight of R_{i−1} at a G² corner, ½ at the corner.
-double sideBlendWeight(double s, double t) {
-  const double s3 = s * s * s, t3 = t * t * t;
-  return s3 + t3 == 0 ? 0.5 : t3 / (s3 + t3);
+/// The two-ribbon blend's weight t^m / (s^m + t^m) of R_{i−1} at a corner
+/// (m = 3 for G², 2 for G¹), ½ at the corner.
+double sideBlendWeight(double s, double t, int m) {
+  const double sm = std::pow(s, m), tm = std::pow(t, m);
+  return sm + tm == 0 ? 0.5 : tm / (sm + tm);
 }
 
 /// Gregory positions by the formula with plain divisions (no batch inversion).
@@ -260,7 +261,7 @@ std::array<double, 3> gregoryFormula(const ck::GregorySamples &in, const ck::Gre
         q += s * (w10 * v[1][c] + (1 - w10) * v[2][c]) + t * (w01 * v[3][c] + (1 - w01) * v[4][c]) +
              s * t * (w11 * v[5][c] + (1 - w11) * v[6][c]);
       }
-      const double mu = in.parabolic ? in.blendShare[i] : 0.0, lambda = sideBlendWeight(s, t);
+      const double mu = in.blendShare[i], lambda = sideBlendWeight(s, t, in.parabolic ? 3 : 2);
       out[c] += b * ((1 - mu) * (left + right - q) + mu * (lambda * left + (1 - lambda) * right));
     }
   }
@@ -271,10 +272,10 @@ std::array<double, 3> gregoryFormula(const ck::GregorySamples &in, const ck::Gre
 
 TEST(Kernels, GregoryPositionsAgreeAcrossWidthsAndWithTheFormula) {
   std::mt19937_64 rng(11);
-  for (int kind : {0, 1, 2}) // G¹, G², G² with blend shares
+  for (int kind : {0, 1, 2, 3}) // G¹, G², G² and G¹ with blend shares
     for (int n : {3, 5, 8}) {
-      const bool parabolic = kind > 0;
-      RandomGregoryInput random(n, parabolic, rng, kind == 2);
+      const bool parabolic = kind == 1 || kind == 2;
+      RandomGregoryInput random(n, parabolic, rng, kind >= 2);
       const ck::GregorySamples &in = random.in;
       const std::vector<ck::GregoryCorner> &corners = random.corners;
       Soa reference(3, kCount);
@@ -609,9 +610,9 @@ TEST(Kernels, GregoryJetsAgreeAcrossWidthsAndWithDualArithmetic) {
   // independent of the kernel's hand-derived derivatives.
   std::mt19937_64 rng(13);
   std::uniform_real_distribution<double> unit(0.02, 0.98), u(-2, 2);
-  for (int kind : {0, 1, 2}) // G¹, G², G² with blend shares 1, 0 and random ones
+  for (int kind : {0, 1, 2, 3}) // G¹, G², G² and G¹ with blend shares 1, 0 and random ones
     for (int n : {3, 5, 8}) {
-      const bool parabolic = kind > 0;
+      const bool parabolic = kind == 1 || kind == 2;
       constexpr size_t count = 203;
       Soa s(3 * n, count), blend(3 * n, count), jets(18 * n, count, &rng);
       for (size_t a = 0; a < size_t(3 * n); ++a)
@@ -630,7 +631,7 @@ TEST(Kernels, GregoryJetsAgreeAcrossWidthsAndWithDualArithmetic) {
       for (auto &corner : corners)
         for (auto &v : corner.v)
           for (double &x : v) x = u(rng);
-      if (kind == 2)
+      if (kind >= 2)
         for (int i = 0; i < n; ++i) in.values.blendShare[i] = i == 0 ? 1.0 : i == 1 ? 0.0 : unit(rng);
       auto vec = [](const double *p) { return Vec3{p[0], p[1], p[2]}; };
       std::vector<double> formula(9 * count);
@@ -663,7 +664,8 @@ TEST(Kernels, GregoryJetsAgreeAcrossWidthsAndWithDualArithmetic) {
           }
           const DualVec3 left = ribbon(prev, sp, si), right = ribbon(i, si, t);
           const double mu = in.values.blendShare[i];
-          const Dual s3 = si * si * si, t3 = t * t * t, lambda = t3 / (s3 + t3);
+          const Dual sm = parabolic ? si * si * si : si * si, tm = parabolic ? t * t * t : t * t;
+          const Dual lambda = tm / (sm + tm);
           sum += b * (Dual(1 - mu) * (left + right - q) + Dual(mu) * (lambda * left + (Dual(1.0) - lambda) * right));
         }
         const Vec3 parts[3] = {sum.v, sum.du, sum.dv};

@@ -399,21 +399,24 @@ template <class D, class V> HWY_INLINE void g2RationalWeights(D d, V s, V t, V (
     }
 }
 
-/// The two-ribbon blend's weight λ = t³ / (s³ + t³) of R_{i−1} at a corner
-/// (GregorySamples::blendShare), ½ at the corner itself; with the partials
-/// ∂λ/∂s = −3 s² t³ / (s³ + t³)², ∂λ/∂t = 3 t² s³ / (s³ + t³)² (0 there).
-template <class D, class V>
+/// The two-ribbon blend's weight λ = t^m / (s^m + t^m) of R_{i−1} at a
+/// corner (GregorySamples::blendShare; m = 3 for G², 2 for G¹), ½ at the
+/// corner itself; with the partials ∂λ/∂s = −m s^{m−1} t^m / (s^m + t^m)²,
+/// ∂λ/∂t = m t^{m−1} s^m / (s^m + t^m)² (0 there).
+template <int M, class D, class V>
 HWY_INLINE V sideBlendWeight(D d, V s, V t, V *bySide = nullptr, V *across = nullptr) {
-  const V s2 = hn::Mul(s, s), t2 = hn::Mul(t, t), s3 = hn::Mul(s2, s), t3 = hn::Mul(t2, t);
-  const V sum = hn::Add(s3, t3);
+  static_assert(M == 2 || M == 3);
+  const V sLow = M == 3 ? hn::Mul(s, s) : s, tLow = M == 3 ? hn::Mul(t, t) : t; // s^{m−1}, t^{m−1}
+  const V sm = hn::Mul(sLow, s), tm = hn::Mul(tLow, t);
+  const V sum = hn::Add(sm, tm);
   const auto atCorner = hn::Not(hn::Gt(sum, hn::Zero(d)));
   const V inverse = hn::Div(hn::Set(d, 1.0), hn::Max(sum, hn::Set(d, 1e-300)));
   if (bySide) {
-    const V three = hn::Set(d, 3.0), inverse2 = hn::Mul(inverse, inverse);
-    *bySide = hn::IfThenZeroElse(atCorner, hn::Neg(hn::Mul(hn::Mul(three, hn::Mul(s2, t3)), inverse2)));
-    *across = hn::IfThenZeroElse(atCorner, hn::Mul(hn::Mul(three, hn::Mul(t2, s3)), inverse2));
+    const V m = hn::Set(d, double(M)), inverse2 = hn::Mul(inverse, inverse);
+    *bySide = hn::IfThenZeroElse(atCorner, hn::Neg(hn::Mul(hn::Mul(m, hn::Mul(sLow, tm)), inverse2)));
+    *across = hn::IfThenZeroElse(atCorner, hn::Mul(hn::Mul(m, hn::Mul(tLow, sm)), inverse2));
   }
-  return hn::IfThenElse(atCorner, hn::Set(d, 0.5), hn::Mul(t3, inverse));
+  return hn::IfThenElse(atCorner, hn::Set(d, 0.5), hn::Mul(tm, inverse));
 }
 
 template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t k, const GregoryArgs &a) {
@@ -428,13 +431,12 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t 
   V previousWeight[ck::GregorySamples::kMaxSides], ownWeight[ck::GregorySamples::kMaxSides];
   for (int i = 0; i < n; ++i) {
     previousWeight[i] = ownWeight[i] = blend[i];
-    if constexpr (Parabolic) {
-      const double mu = in.blendShare[i];
-      if (mu == 0) continue;
-      const V muLambda = hn::Mul(hn::Set(d, mu), sideBlendWeight(d, side[i], hn::Sub(one, side[i == 0 ? n - 1 : i - 1])));
-      ownWeight[i] = hn::NegMulAdd(blend[i], muLambda, blend[i]);
-      previousWeight[i] = hn::Mul(blend[i], hn::Add(hn::Set(d, 1.0 - mu), muLambda));
-    }
+    const double mu = in.blendShare[i];
+    if (mu == 0) continue;
+    const V lambda = sideBlendWeight<Parabolic ? 3 : 2>(d, side[i], hn::Sub(one, side[i == 0 ? n - 1 : i - 1]));
+    const V muLambda = hn::Mul(hn::Set(d, mu), lambda);
+    ownWeight[i] = hn::NegMulAdd(blend[i], muLambda, blend[i]);
+    previousWeight[i] = hn::Mul(blend[i], hn::Add(hn::Set(d, 1.0 - mu), muLambda));
   }
   V acc[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
   // The ribbon terms gathered per ribbon: R_i enters corner i at δ = t_i =
@@ -457,7 +459,7 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t 
   }
   // − Σ B_i (1 − μ_i) Q_i(s_i, t_i).
   for (int i = 0; i < n; ++i) {
-    if (in.blendShare[i] == 1 && Parabolic) continue;
+    if (in.blendShare[i] == 1) continue;
     const int prev = i == 0 ? n - 1 : i - 1;
     const V s = side[i], t = hn::Sub(one, side[prev]);
     const double(*vec)[3] = a.corners[i].v;
@@ -496,7 +498,7 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t 
       add(t, hn::Mul(s2, den[1]), 3);
       add(hn::Mul(s, t), hn::Mul(s, den[2]), 5);
     }
-    const V correctionWeight = Parabolic ? hn::Mul(blend[i], hn::Set(d, 1.0 - in.blendShare[i])) : blend[i];
+    const V correctionWeight = hn::Mul(blend[i], hn::Set(d, 1.0 - in.blendShare[i]));
     for (int c = 0; c < 3; ++c) acc[c] = hn::NegMulAdd(correctionWeight, q[c], acc[c]);
   }
   if (a.interleaved) {
@@ -534,11 +536,11 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
     const V hs2 = hn::Mul(half, hn::Mul(s.v, s.v)), ht2 = hn::Mul(half, hn::Mul(t.v, t.v));
     // G² blend share μ (GregorySamples::blendShare): the ribbons' weights
     // 1 − μ (1 − λ) and 1 − μ λ with their partials ±μ ∂λ.
-    const double mu = Parabolic ? val.blendShare[i] : 0.0;
+    const double mu = val.blendShare[i];
     DualV<V> previousShare{one, hn::Zero(d), hn::Zero(d)}, ownShare = previousShare;
-    if (Parabolic && mu != 0) {
+    if (mu != 0) {
       V lambdaS, lambdaT;
-      const V lambda = sideBlendWeight(d, s.v, t.v, &lambdaS, &lambdaT), m = hn::Set(d, mu);
+      const V lambda = sideBlendWeight<Parabolic ? 3 : 2>(d, s.v, t.v, &lambdaS, &lambdaT), m = hn::Set(d, mu);
       const V lambdaU = hn::MulAdd(lambdaS, s.u, hn::Mul(lambdaT, t.u));
       const V lambdaW = hn::MulAdd(lambdaS, s.w, hn::Mul(lambdaT, t.w));
       previousShare = {hn::MulAdd(m, lambda, hn::Set(d, 1.0 - mu)), hn::Mul(m, lambdaU), hn::Mul(m, lambdaW)};
@@ -557,7 +559,7 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
         lslope = hn::MulAdd(hs2, load(in.dC[prev][c]), lslope), rslope = hn::MulAdd(ht2, load(in.dC[i][c]), rslope);
         lacross = hn::MulAdd(s.v, lc, lacross), racross = hn::MulAdd(t.v, rc, racross);
       }
-      if (Parabolic && mu != 0) {
+      if (mu != 0) {
         // (1 − μ (1 − λ)) R_{i−1} + (1 − μ λ) R_i with the product rule.
         const V lu = hn::MulAdd(sp.u, lslope, hn::Mul(s.u, lacross)), lw = hn::MulAdd(sp.w, lslope, hn::Mul(s.w, lacross));
         const V ru = hn::MulAdd(s.u, rslope, hn::Mul(t.u, racross)), rw = hn::MulAdd(s.w, rslope, hn::Mul(t.w, racross));
@@ -572,7 +574,7 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
       term[2][c] = hn::MulAdd(sp.w, lslope, hn::MulAdd(s.w, lacross, hn::MulAdd(s.w, rslope, hn::Mul(t.w, racross))));
     }
     const V zero = hn::Zero(d);
-    if (Parabolic && mu == 1) {
+    if (mu == 1) {
       // The two-ribbon blend alone: no correction patch.
     } else if constexpr (Parabolic) {
       // Q in the form of GregoryCornerTerms with its partials in s and t:
@@ -647,14 +649,17 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
           term[2][c] = hn::NegMulAdd(faV, va, hn::NegMulAdd(fbV, vb, term[2][c]));
         }
       };
-      for (int c = 0; c < 3; ++c) term[0][c] = hn::Sub(term[0][c], hn::Set(d, vec[0][c]));
+      // With a blend share μ, (1 − μ) Q: every f and its partials scaled.
+      const V keep = hn::Set(d, 1.0 - mu);
+      for (int c = 0; c < 3; ++c) term[0][c] = hn::NegMulAdd(keep, hn::Set(d, vec[0][c]), term[0][c]);
       const V s2 = hn::Mul(s.v, s.v), t2 = hn::Mul(t.v, t.v), two = hn::Set(d, 2.0);
       V den[3] = {hn::Add(s.v, t2), hn::Add(s2, t.v), hn::Add(s.v, t.v)};
       reciprocals(d, den);
       // s W(a10, b10; s, t²), t W(a01, b01; s², t), s t W(a11, b11; s, t).
-      subtract(s.v, one, zero, s.v, one, t2, hn::Mul(two, t.v), den[0], 1);
-      subtract(t.v, zero, one, s2, hn::Mul(two, s.v), t.v, one, den[1], 3);
-      subtract(hn::Mul(s.v, t.v), t.v, s.v, s.v, one, t.v, one, den[2], 5);
+      const V st = hn::Mul(s.v, t.v), kt = hn::Mul(keep, t.v), ks = hn::Mul(keep, s.v);
+      subtract(ks, keep, zero, s.v, one, t2, hn::Mul(two, t.v), den[0], 1);
+      subtract(kt, zero, keep, s2, hn::Mul(two, s.v), t.v, one, den[1], 3);
+      subtract(hn::Mul(keep, st), kt, ks, s.v, one, t.v, one, den[2], 5);
     }
     for (int c = 0; c < 3; ++c) {
       acc[0][c] = hn::MulAdd(blend.v, term[0][c], acc[0][c]);

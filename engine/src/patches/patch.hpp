@@ -64,6 +64,10 @@ struct CornerData {
 /// nine-term correction patch would carry the ribbons' disagreement there.
 std::vector<double> cornerBlendShares(const std::vector<LinearRibbon> &ribbons,
                                       const std::vector<ParabolicRibbon> &parabolic);
+/// gregory-g1: the same from how far the ribbons' end twists, which the
+/// four-term correction patch extrapolates, depart from how T turns along
+/// each side (corner i at side i's start).
+std::vector<double> cornerBlendShares(const std::vector<LinearRibbon> &ribbons);
 
 /// c in the kernels' G¹ layout (a00, a10, b10, a01, b01, a11, b11).
 kernels::GregoryCorner kernelCorner(const CornerData &c);
@@ -79,8 +83,8 @@ public:
 
   const RegularDomain &domain() const { return domain_; }
   const LinearRibbon &ribbon(int side) const { return ribbons_[domain_.wrap(side)]; }
-  /// gregory-g2: corner i's share of the two-ribbon blend (cornerBlendShares);
-  /// empty for the other schemes.
+  /// Gregory schemes: corner i's share of the two-ribbon blend
+  /// (cornerBlendShares); empty for the other schemes.
   const std::vector<double> &blendShares() const { return blendShare_; }
 
   /// Surface point with exact ∂/∂u, ∂/∂v at domain point (u, v).
@@ -223,8 +227,8 @@ private:
   /// G²: the parabolic ribbons' corner data (cornerData2 of the ends meeting
   /// at corner i), computed once instead of at every point.
   std::vector<CornerData2> corners2_;
-  /// G²: corner i's share of the two-ribbon blend in its interpolant
-  /// (kernels::GregorySamples::blendShare; cornerBlendShares).
+  /// Gregory schemes: corner i's share of the two-ribbon blend in its
+  /// interpolant (kernels::GregorySamples::blendShare; cornerBlendShares).
   std::vector<double> blendShare_;
   /// The same corner data as the kernels take it, computed once: the
   /// Gregory schemes' correction patches (cornerVectors) and, for G², their
