@@ -230,7 +230,7 @@ struct RandomGregoryInput {
 /// (m = 3 for G², 2 for G¹), ½ at the corner.
 double sideBlendWeight(double s, double t, int m) {
   const double sm = std::pow(s, m), tm = std::pow(t, m);
-  return sm + tm == 0 ? 0.5 : tm / (sm + tm);
+  return sm + tm <= 1e-250 ? 0.5 : tm / (sm + tm);
 }
 
 /// Gregory positions by the formula with plain divisions (no batch inversion).

@@ -82,13 +82,13 @@ Dual2Vec3 ribbonAt2(const SideEndData &j, Dual2 s, Dual2 d) {
 /// (s, t) (kernels::GregorySamples::blendShare): λ − 0 = O(t³) on t = 0
 /// and 1 − λ = O(s³) on s = 0, so each ribbon is met to second order on its
 /// side, and every value is a convex combination of the two ribbons'.
-/// At the corner itself (0/0) the ribbons' mean, as the correction patch's
-/// limit there.
+/// At the corner itself (0/0, or within underflow of it) the ribbons'
+/// mean, as the correction patch's limit there.
 /// G¹ (`order` 2): λ = t² / (s² + t²), which meets each ribbon to first order.
 template <class N, class P> P sideBlendOf(const P &previous, const P &own, N s, N t, double mu, int order = 3) {
   if (mu == 0) return P{};
   const N sm = order == 3 ? s * s * s : s * s, tm = order == 3 ? t * t * t : t * t, sum = sm + tm;
-  if (sum.v == 0) return N(0.5 * mu) * (previous + own);
+  if (!(sum.v > 1e-250)) return N(0.5 * mu) * (previous + own); // as the kernels: sum² would underflow
   const N lambda = tm / sum;
   return N(mu) * (lambda * previous + (N(1.0) - lambda) * own);
 }
