@@ -198,3 +198,96 @@ TEST(BoundedPatch, HighOrderCornerTermsMeetInTheTangentPlane) {
   }
   EXPECT_GT(largest, 0.1); // the quad's ribbons did disagree there
 }
+
+namespace {
+
+/// The blend shares of every gregory-g2 face of `surface`.
+std::vector<double> allBlendShares(const Surface &surface) {
+  std::vector<double> shares;
+  for (int f = 0; f < surface.faceCount(); ++f) {
+    const std::vector<double> &face = SurfaceAccess::patch(surface, f)->blendShares();
+    shares.insert(shares.end(), face.begin(), face.end());
+  }
+  return shares;
+}
+
+SurfaceOptions g2() {
+  SurfaceOptions options;
+  options.scheme = Scheme::GregoryG2;
+  return options;
+}
+
+} // namespace
+
+TEST(BoundedPatch, TheCorrectionPatchGivesWayOnlyWhereTheRibbonsDisagree) {
+  // On networks whose ribbons agree at the corners the nine-term correction
+  // patch stays alone (μ = 0: [SV14] eq. 17, figures unchanged); on
+  // saddle-nodes, whose corner terms disagree, some corners take a share of
+  // the two-ribbon blend, some all of it.
+  for (const char *name : {"pentagon", "sphere-dodecahedron", "ellipsoid-truncated-icosahedron", "torus-mixed"}) {
+    const std::vector<double> shares = allBlendShares(Surface::build(Network::build(builtinNetwork(name), name), g2()));
+    EXPECT_EQ(*std::max_element(shares.begin(), shares.end()), 0.0) << name;
+  }
+  // gregory-g1: no built-in has an end twist that departs from its side.
+  for (const BuiltinInfo &info : builtinNetworks()) {
+    const std::vector<double> shares =
+        allBlendShares(Surface::build(Network::build(builtinNetwork(info.name), info.name), SurfaceOptions{}));
+    ASSERT_FALSE(shares.empty()) << info.name;
+    EXPECT_EQ(*std::max_element(shares.begin(), shares.end()), 0.0) << info.name;
+  }
+  const std::vector<double> saddle =
+      allBlendShares(Surface::build(Network::build(builtinNetwork("saddle-nodes"), "saddle-nodes"), g2()));
+  const auto partial = std::count_if(saddle.begin(), saddle.end(), [](double mu) { return mu > 0 && mu < 1; });
+  const auto whole = std::count(saddle.begin(), saddle.end(), 1.0);
+  std::printf("saddle-nodes: %td of %zu corners blended in part, %td wholly\n", partial, saddle.size(), whole);
+  EXPECT_GT(partial, 0);
+  EXPECT_GT(whole, 0);
+  for (double mu : saddle) EXPECT_TRUE(mu >= 0 && mu <= 1) << mu;
+}
+
+TEST(BoundedPatch, BlendedCornersAgreeAcrossEvaluationPathsAndOrders) {
+  // saddle-nodes' faces mix μ = 0, partial and whole shares: the batched
+  // jets (ribbon tables and the SIMD kernel) agree with the pointwise Dual
+  // evaluation, the hyper-dual evaluation has the same first derivatives,
+  // and its second derivatives are the central differences of the first.
+  const Surface surface = Surface::build(Network::build(builtinNetwork("saddle-nodes"), "saddle-nodes"), g2());
+  std::mt19937 rng(5);
+  double worstJet = 0, worstFirst = 0, worstSecondPlain = 0, worstSecondBlended = 0;
+  for (int f = 0; f < surface.faceCount(); ++f) {
+    const Patch &patch = *SurfaceAccess::patch(surface, f);
+    const std::vector<double> &shares = patch.blendShares();
+    const bool blended = *std::max_element(shares.begin(), shares.end()) > 0;
+    const std::vector<Vec2> points = interiorPoints(patch.domain(), 64, rng);
+    std::vector<double> us, vs;
+    for (const Vec2 &p : points) us.push_back(p.x), vs.push_back(p.y);
+    std::vector<DualVec3> jets(points.size());
+    patch.evaluateJets(points.size(), us.data(), vs.data(), jets.data());
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const DualVec3 exact = patch.evaluate(us[k], vs[k]);
+      const double scale = 1 + norm(exact.du) + norm(exact.dv);
+      worstJet = std::max({worstJet, norm(jets[k].v - exact.v) / (1 + norm(exact.v)),
+                           (norm(jets[k].du - exact.du) + norm(jets[k].dv - exact.dv)) / scale});
+      const Dual2Vec3 second = patch.evaluateSecondOrder(us[k], vs[k]);
+      worstFirst = std::max(worstFirst, (norm(second.du - exact.du) + norm(second.dv - exact.dv)) / scale);
+      constexpr double h = 1e-5;
+      const DualVec3 uPlus = patch.evaluate(us[k] + h, vs[k]), uMinus = patch.evaluate(us[k] - h, vs[k]);
+      const DualVec3 vPlus = patch.evaluate(us[k], vs[k] + h), vMinus = patch.evaluate(us[k], vs[k] - h);
+      const Vec3 duu = (uPlus.du - uMinus.du) / (2 * h), duv = (vPlus.du - vMinus.du) / (2 * h);
+      const Vec3 dvv = (vPlus.dv - vMinus.dv) / (2 * h);
+      const double secondScale = 1 + norm(second.duu) + norm(second.duv) + norm(second.dvv);
+      double &worst = blended ? worstSecondBlended : worstSecondPlain;
+      worst = std::max(worst, (norm(second.duu - duu) + norm(second.duv - duv) + norm(second.dvv - dvv)) / secondScale);
+    }
+  }
+  std::printf("saddle-nodes G²: jets %.2e, hyper-dual first %.2e, second against differences %.2e (faces "
+              "without blend shares: %.2e)\n",
+              worstJet, worstFirst, worstSecondBlended, worstSecondPlain);
+  EXPECT_LE(worstJet, 1e-10);
+  EXPECT_LE(worstFirst, 1e-12);
+  // The ribbons' C'' is a fourth-order difference (ParabolicRibbon::
+  // secondOrder), which bounds the agreement on every face; the blended
+  // corners add no error of their own beyond it.
+  EXPECT_GT(worstSecondPlain, 0.0);
+  EXPECT_LE(worstSecondPlain, 1e-3);
+  EXPECT_LE(worstSecondBlended, 5 * worstSecondPlain);
+}

@@ -255,7 +255,7 @@ TEST(G2VersusG1, CurvatureJumpAndReferenceDeviation) {
       halved.step = 0.5 * CurvatureJumpOptions{}.step;
       EXPECT_NEAR(measureCurvatureJump(g1, halved).maxJump, jump1, 0.1 * jump1);
     }
-    // saddle-nodes: three gregory-g2 patches fold (README Status), and since
+    // saddle-nodes: four gregory-g2 patches fold (README Status), and since
     // the G¹ cross-derivatives stopped following the curves' speed (unit-frame
     // α, β) G¹ deviates less there (0.94 % against 1.14 %).
     if (name != "saddle-nodes") {

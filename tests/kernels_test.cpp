@@ -200,12 +200,13 @@ namespace {
 /// Random inputs of the Gregory position kernel: parameters and blends in
 /// [0, 1], ribbon values and corner vectors in [−2, 2], and a sample at
 /// corner 1 (s_1 = 0, s_0 = 1: the rational weights' limit) and one very
-/// near it (the batch inversion's underflow fallback).
+/// near it (the batch inversion's underflow fallback). With `shares`, the
+/// corners take blend shares 1, 0 and random ones in between.
 struct RandomGregoryInput {
   Soa s, blend, P, T, C;
   ck::GregorySamples in;
   std::vector<ck::GregoryCorner> corners;
-  RandomGregoryInput(int n, bool parabolic, std::mt19937_64 &rng)
+  RandomGregoryInput(int n, bool parabolic, std::mt19937_64 &rng, bool shares = false)
       : s(n, kCount), blend(n, kCount), P(3 * n, kCount, &rng), T(3 * n, kCount, &rng), C(3 * n, kCount, &rng),
         corners(n) {
     std::uniform_real_distribution<double> unit(0, 1), u(-2, 2);
@@ -220,8 +221,17 @@ struct RandomGregoryInput {
     for (auto &corner : corners)
       for (auto &v : corner.v)
         for (double &x : v) x = u(rng);
+    if (shares)
+      for (int i = 0; i < n; ++i) in.blendShare[i] = i == 0 ? 1.0 : i == 1 ? 0.0 : unit(rng);
   }
 };
+
+/// The two-ribbon blend's weight t^m / (s^m + t^m) of R_{i−1} at a corner
+/// (m = 3 for G², 2 for G¹), ½ at the corner.
+double sideBlendWeight(double s, double t, int m) {
+  const double sm = std::pow(s, m), tm = std::pow(t, m);
+  return sm + tm <= 1e-250 ? 0.5 : tm / (sm + tm);
+}
 
 /// Gregory positions by the formula with plain divisions (no batch inversion).
 std::array<double, 3> gregoryFormula(const ck::GregorySamples &in, const ck::GregoryCorner *corners, size_t k) {
@@ -251,7 +261,8 @@ std::array<double, 3> gregoryFormula(const ck::GregorySamples &in, const ck::Gre
         q += s * (w10 * v[1][c] + (1 - w10) * v[2][c]) + t * (w01 * v[3][c] + (1 - w01) * v[4][c]) +
              s * t * (w11 * v[5][c] + (1 - w11) * v[6][c]);
       }
-      out[c] += b * (left + right - q);
+      const double mu = in.blendShare[i], lambda = sideBlendWeight(s, t, in.parabolic ? 3 : 2);
+      out[c] += b * ((1 - mu) * (left + right - q) + mu * (lambda * left + (1 - lambda) * right));
     }
   }
   return out;
@@ -372,9 +383,10 @@ TEST(Kernels, SweepGradientsAgreeAcrossWidthsAndWithTheDomainsImplicitDerivative
 
 TEST(Kernels, GregoryPositionsAgreeAcrossWidthsAndWithTheFormula) {
   std::mt19937_64 rng(11);
-  for (bool parabolic : {false, true})
+  for (int kind : {0, 1, 2, 3}) // G¹, G², G² and G¹ with blend shares
     for (int n : {3, 5, 8}) {
-      RandomGregoryInput random(n, parabolic, rng);
+      const bool parabolic = kind == 1 || kind == 2;
+      RandomGregoryInput random(n, parabolic, rng, kind >= 2);
       const ck::GregorySamples &in = random.in;
       const std::vector<ck::GregoryCorner> &corners = random.corners;
       Soa reference(3, kCount);
@@ -385,7 +397,7 @@ TEST(Kernels, GregoryPositionsAgreeAcrossWidthsAndWithTheFormula) {
         const auto p = gregoryFormula(in, corners.data(), k);
         for (int c = 0; c < 3; ++c) formula[c * kCount + k] = p[c];
       }
-      EXPECT_LE(relativeDifference(reference.data, formula), 1e-12) << "n=" << n << (parabolic ? " G2" : " G1");
+      EXPECT_LE(relativeDifference(reference.data, formula), 1e-12) << "n=" << n << " kind " << kind;
       for (const auto &w : ck::availableWidths()) {
         Soa out(3, kCount);
         double *o[3] = {out[0], out[1], out[2]};
@@ -709,8 +721,9 @@ TEST(Kernels, GregoryJetsAgreeAcrossWidthsAndWithDualArithmetic) {
   // independent of the kernel's hand-derived derivatives.
   std::mt19937_64 rng(13);
   std::uniform_real_distribution<double> unit(0.02, 0.98), u(-2, 2);
-  for (bool parabolic : {false, true})
+  for (int kind : {0, 1, 2, 3}) // G¹, G², G² and G¹ with blend shares 1, 0 and random ones
     for (int n : {3, 5, 8}) {
+      const bool parabolic = kind == 1 || kind == 2;
       constexpr size_t count = 203;
       Soa s(3 * n, count), blend(3 * n, count), jets(18 * n, count, &rng);
       for (size_t a = 0; a < size_t(3 * n); ++a)
@@ -729,6 +742,8 @@ TEST(Kernels, GregoryJetsAgreeAcrossWidthsAndWithDualArithmetic) {
       for (auto &corner : corners)
         for (auto &v : corner.v)
           for (double &x : v) x = u(rng);
+      if (kind >= 2)
+        for (int i = 0; i < n; ++i) in.values.blendShare[i] = i == 0 ? 1.0 : i == 1 ? 0.0 : unit(rng);
       auto vec = [](const double *p) { return Vec3{p[0], p[1], p[2]}; };
       std::vector<double> formula(9 * count);
       for (size_t k = 0; k < count; ++k) {
@@ -758,7 +773,11 @@ TEST(Kernels, GregoryJetsAgreeAcrossWidthsAndWithDualArithmetic) {
             const CornerData c{vec(v[0]), vec(v[1]), vec(v[3]), vec(v[5]), vec(v[2]), vec(v[4]), vec(v[6])};
             q = gregoryCorrection(c, si, t, si, t);
           }
-          sum += b * (ribbon(prev, sp, si) + ribbon(i, si, t) - q);
+          const DualVec3 left = ribbon(prev, sp, si), right = ribbon(i, si, t);
+          const double mu = in.values.blendShare[i];
+          const Dual sm = parabolic ? si * si * si : si * si, tm = parabolic ? t * t * t : t * t;
+          const Dual lambda = tm / (sm + tm);
+          sum += b * (Dual(1 - mu) * (left + right - q) + Dual(mu) * (lambda * left + (Dual(1.0) - lambda) * right));
         }
         const Vec3 parts[3] = {sum.v, sum.du, sum.dv};
         for (int p = 0; p < 3; ++p)
@@ -767,7 +786,7 @@ TEST(Kernels, GregoryJetsAgreeAcrossWidthsAndWithDualArithmetic) {
       for (const auto &w : ck::availableWidths()) {
         Soa out(9, count);
         ck::gregoryJets(count, in, corners.data(), span9(out), w.id);
-        EXPECT_LE(relativeDifference(out.data, formula), 1e-12) << w.name << " n=" << n << (parabolic ? " G2" : " G1");
+        EXPECT_LE(relativeDifference(out.data, formula), 1e-12) << w.name << " n=" << n << " kind " << kind;
       }
     }
 }

@@ -97,6 +97,28 @@ template <class D, class V> HWY_INLINE void g2RationalWeights(D d, V s, V t, V (
     }
 }
 
+/// The two-ribbon blend's weight λ = t^m / (s^m + t^m) of R_{i−1} at a
+/// corner (GregorySamples::blendShare; m = 3 for G², 2 for G¹), ½ at the
+/// corner itself; with the partials ∂λ/∂s = −m s^{m−1} t^m / (s^m + t^m)²,
+/// ∂λ/∂t = m t^{m−1} s^m / (s^m + t^m)² (0 there). "At the corner" is
+/// s^m + t^m ≤ 1e-250, where the squared denominator would underflow.
+template <int M, class D, class V>
+HWY_INLINE V sideBlendWeight(D d, V s, V t, V *bySide = nullptr, V *across = nullptr) {
+  static_assert(M == 2 || M == 3);
+  const V sLow = M == 3 ? hn::Mul(s, s) : s, tLow = M == 3 ? hn::Mul(t, t) : t; // s^{m−1}, t^{m−1}
+  const V sm = hn::Mul(sLow, s), tm = hn::Mul(tLow, t);
+  const V sum = hn::Add(sm, tm);
+  const auto atCorner = hn::Not(hn::Gt(sum, hn::Set(d, 1e-250)));
+  const V inverse = hn::Div(hn::Set(d, 1.0), hn::Max(sum, hn::Set(d, 1e-250)));
+  if (bySide) {
+    const V m = hn::Set(d, double(M)), inverse2 = hn::Mul(inverse, inverse);
+    *bySide = hn::IfThenZeroElse(atCorner, hn::Neg(hn::Mul(hn::Mul(m, hn::Mul(sLow, tm)), inverse2)));
+    *across = hn::IfThenZeroElse(atCorner, hn::Mul(hn::Mul(m, hn::Mul(tLow, sm)), inverse2));
+  }
+  return hn::IfThenElse(atCorner, hn::Set(d, 0.5), hn::Mul(tm, inverse));
+}
+
+
 } // namespace HWY_NAMESPACE
 } // namespace kernels_impl
 } // namespace curvenet

@@ -55,16 +55,29 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t 
   const V one = hn::Set(d, 1.0), half = hn::Set(d, 0.5);
   V side[ck::GregorySamples::kMaxSides], blend[ck::GregorySamples::kMaxSides];
   for (int i = 0; i < n; ++i) side[i] = hn::LoadU(d, in.s[i] + k), blend[i] = hn::LoadU(d, in.blend[i] + k);
+  // Corner i's weights of its two ribbons: B_i for both in eq. 17; with a
+  // blend share μ, B_i (1 − μ (1 − λ)) for R_{i−1} and B_i (1 − μ λ) for R_i.
+  V previousWeight[ck::GregorySamples::kMaxSides], ownWeight[ck::GregorySamples::kMaxSides];
+  for (int i = 0; i < n; ++i) {
+    previousWeight[i] = ownWeight[i] = blend[i];
+    const double mu = in.blendShare[i];
+    if (mu == 0) continue;
+    const V lambda = sideBlendWeight<Parabolic ? 3 : 2>(d, side[i], hn::Sub(one, side[i == 0 ? n - 1 : i - 1]));
+    const V muLambda = hn::Mul(hn::Set(d, mu), lambda);
+    ownWeight[i] = hn::NegMulAdd(blend[i], muLambda, blend[i]);
+    previousWeight[i] = hn::Mul(blend[i], hn::Add(hn::Set(d, 1.0 - mu), muLambda));
+  }
   V acc[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
   // The ribbon terms gathered per ribbon: R_i enters corner i at δ = t_i =
   // 1 − s_{i−1} with weight B_i and corner i + 1 at δ = s_{i+1} with weight
   // B_{i+1}, so its share is (B_i + B_{i+1}) P_i + (B_i t_i + B_{i+1} s_{i+1}) T_i
   // [+ ½ (B_i t_i² + B_{i+1} s_{i+1}²) C_i]: each ribbon value is read once.
+  // (The weights there are ownWeight[i] and previousWeight[i + 1].)
   for (int i = 0; i < n; ++i) {
     const int prev = i == 0 ? n - 1 : i - 1, next = i + 1 == n ? 0 : i + 1;
     const V t = hn::Sub(one, side[prev]);
-    const V atCorner = hn::Mul(blend[i], t), atNext = hn::Mul(blend[next], side[next]);
-    const V wP = hn::Add(blend[i], blend[next]), wT = hn::Add(atCorner, atNext);
+    const V atCorner = hn::Mul(ownWeight[i], t), atNext = hn::Mul(previousWeight[next], side[next]);
+    const V wP = hn::Add(ownWeight[i], previousWeight[next]), wT = hn::Add(atCorner, atNext);
     V wC = hn::Zero(d);
     if constexpr (Parabolic) wC = hn::Mul(half, hn::MulAdd(atCorner, t, hn::Mul(atNext, side[next])));
     for (int c = 0; c < 3; ++c) {
@@ -73,8 +86,9 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t 
       if constexpr (Parabolic) acc[c] = hn::MulAdd(wC, hn::LoadU(d, in.C[i][c] + k), acc[c]);
     }
   }
-  // − Σ B_i Q_i(s_i, t_i).
+  // − Σ B_i (1 − μ_i) Q_i(s_i, t_i).
   for (int i = 0; i < n; ++i) {
+    if (in.blendShare[i] == 1) continue;
     const int prev = i == 0 ? n - 1 : i - 1;
     const V s = side[i], t = hn::Sub(one, side[prev]);
     const double(*vec)[3] = a.corners[i].v;
@@ -113,7 +127,8 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t 
       add(t, hn::Mul(s2, den[1]), 3);
       add(hn::Mul(s, t), hn::Mul(s, den[2]), 5);
     }
-    for (int c = 0; c < 3; ++c) acc[c] = hn::NegMulAdd(blend[i], q[c], acc[c]);
+    const V correctionWeight = hn::Mul(blend[i], hn::Set(d, 1.0 - in.blendShare[i]));
+    for (int c = 0; c < 3; ++c) acc[c] = hn::NegMulAdd(correctionWeight, q[c], acc[c]);
   }
   if (a.interleaved) {
     hn::StoreInterleaved3(hn::Add(acc[0], hn::Set(d, a.offset[0])), hn::Add(acc[1], hn::Set(d, a.offset[1])),

@@ -65,6 +65,18 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
     // value P + δT [+ ½δ²C], ∂ = σ' (P' + δT' [+ ½δ²C']) + δ' (T [+ δC]).
     V term[3][3];
     const V hs2 = hn::Mul(half, hn::Mul(s.v, s.v)), ht2 = hn::Mul(half, hn::Mul(t.v, t.v));
+    // G² blend share μ (GregorySamples::blendShare): the ribbons' weights
+    // 1 − μ (1 − λ) and 1 − μ λ with their partials ±μ ∂λ.
+    const double mu = val.blendShare[i];
+    DualV<V> previousShare{one, hn::Zero(d), hn::Zero(d)}, ownShare = previousShare;
+    if (mu != 0) {
+      V lambdaS, lambdaT;
+      const V lambda = sideBlendWeight<Parabolic ? 3 : 2>(d, s.v, t.v, &lambdaS, &lambdaT), m = hn::Set(d, mu);
+      const V lambdaU = hn::MulAdd(lambdaS, s.u, hn::Mul(lambdaT, t.u));
+      const V lambdaW = hn::MulAdd(lambdaS, s.w, hn::Mul(lambdaT, t.w));
+      previousShare = {hn::MulAdd(m, lambda, hn::Set(d, 1.0 - mu)), hn::Mul(m, lambdaU), hn::Mul(m, lambdaW)};
+      ownShare = {hn::NegMulAdd(m, lambda, one), hn::Neg(previousShare.u), hn::Neg(previousShare.w)};
+    }
     for (int c = 0; c < 3; ++c) {
       V lv = hn::MulAdd(s.v, load(val.T[prev][c]), load(val.P[prev][c]));
       V lslope = hn::MulAdd(s.v, load(in.dT[prev][c]), load(in.dP[prev][c]));
@@ -78,12 +90,24 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
         lslope = hn::MulAdd(hs2, load(in.dC[prev][c]), lslope), rslope = hn::MulAdd(ht2, load(in.dC[i][c]), rslope);
         lacross = hn::MulAdd(s.v, lc, lacross), racross = hn::MulAdd(t.v, rc, racross);
       }
+      if (mu != 0) {
+        // (1 − μ (1 − λ)) R_{i−1} + (1 − μ λ) R_i with the product rule.
+        const V lu = hn::MulAdd(sp.u, lslope, hn::Mul(s.u, lacross)), lw = hn::MulAdd(sp.w, lslope, hn::Mul(s.w, lacross));
+        const V ru = hn::MulAdd(s.u, rslope, hn::Mul(t.u, racross)), rw = hn::MulAdd(s.w, rslope, hn::Mul(t.w, racross));
+        const V gap = hn::Sub(lv, rv);
+        term[0][c] = hn::MulAdd(previousShare.v, lv, hn::Mul(ownShare.v, rv));
+        term[1][c] = hn::MulAdd(previousShare.v, lu, hn::MulAdd(ownShare.v, ru, hn::Mul(previousShare.u, gap)));
+        term[2][c] = hn::MulAdd(previousShare.v, lw, hn::MulAdd(ownShare.v, rw, hn::Mul(previousShare.w, gap)));
+        continue;
+      }
       term[0][c] = hn::Add(lv, rv);
       term[1][c] = hn::MulAdd(sp.u, lslope, hn::MulAdd(s.u, lacross, hn::MulAdd(s.u, rslope, hn::Mul(t.u, racross))));
       term[2][c] = hn::MulAdd(sp.w, lslope, hn::MulAdd(s.w, lacross, hn::MulAdd(s.w, rslope, hn::Mul(t.w, racross))));
     }
     const V zero = hn::Zero(d);
-    if constexpr (Parabolic) {
+    if (mu == 1) {
+      // The two-ribbon blend alone: no correction patch.
+    } else if constexpr (Parabolic) {
       // Q in the form of GregoryCornerTerms with its partials in s and t:
       // Q = Σ s^p t^r taylor[p][r] + Σ_j ρ_j rational[j], ρ_j = s³ t^r / (s^{3−p} + t^{3−r}),
       //   ∂ρ/∂s = s² t^r (3 t^{3−r} + p s^{3−p}) / den²,
@@ -127,6 +151,11 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
           }
           ++j;
         }
+      if (mu != 0) {
+        const V keep = hn::Set(d, 1.0 - mu);
+        for (auto &row : q)
+          for (V &x : row) x = hn::Mul(keep, x);
+      }
       for (int c = 0; c < 3; ++c) {
         term[0][c] = hn::Sub(term[0][c], q[0][c]);
         term[1][c] = hn::NegMulAdd(q[1][c], s.u, hn::NegMulAdd(q[2][c], t.u, term[1][c]));
@@ -151,14 +180,17 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
           term[2][c] = hn::NegMulAdd(faV, va, hn::NegMulAdd(fbV, vb, term[2][c]));
         }
       };
-      for (int c = 0; c < 3; ++c) term[0][c] = hn::Sub(term[0][c], hn::Set(d, vec[0][c]));
+      // With a blend share μ, (1 − μ) Q: every f and its partials scaled.
+      const V keep = hn::Set(d, 1.0 - mu);
+      for (int c = 0; c < 3; ++c) term[0][c] = hn::NegMulAdd(keep, hn::Set(d, vec[0][c]), term[0][c]);
       const V s2 = hn::Mul(s.v, s.v), t2 = hn::Mul(t.v, t.v), two = hn::Set(d, 2.0);
       V den[3] = {hn::Add(s.v, t2), hn::Add(s2, t.v), hn::Add(s.v, t.v)};
       reciprocals(d, den);
       // s W(a10, b10; s, t²), t W(a01, b01; s², t), s t W(a11, b11; s, t).
-      subtract(s.v, one, zero, s.v, one, t2, hn::Mul(two, t.v), den[0], 1);
-      subtract(t.v, zero, one, s2, hn::Mul(two, s.v), t.v, one, den[1], 3);
-      subtract(hn::Mul(s.v, t.v), t.v, s.v, s.v, one, t.v, one, den[2], 5);
+      const V st = hn::Mul(s.v, t.v), kt = hn::Mul(keep, t.v), ks = hn::Mul(keep, s.v);
+      subtract(ks, keep, zero, s.v, one, t2, hn::Mul(two, t.v), den[0], 1);
+      subtract(kt, zero, keep, s2, hn::Mul(two, s.v), t.v, one, den[1], 3);
+      subtract(hn::Mul(keep, st), kt, ks, s.v, one, t.v, one, den[2], 5);
     }
     for (int c = 0; c < 3; ++c) {
       acc[0][c] = hn::MulAdd(blend.v, term[0][c], acc[0][c]);

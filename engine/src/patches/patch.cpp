@@ -78,6 +78,46 @@ Dual2Vec3 ribbonAt2(const SideEndData &j, Dual2 s, Dual2 d) {
          (Dual2(0.5) * d * d) * Dual2Vec3::along(j.C, j.dC, j.ddC, s);
 }
 
+/// μ (λ R_{i−1} + (1 − λ) R_i), λ = t³ / (s³ + t³), of a G² corner in
+/// (s, t) (kernels::GregorySamples::blendShare): λ − 0 = O(t³) on t = 0
+/// and 1 − λ = O(s³) on s = 0, so each ribbon is met to second order on its
+/// side, and every value is a convex combination of the two ribbons'.
+/// At the corner itself (0/0, or within underflow of it) the ribbons'
+/// mean, as the correction patch's limit there.
+/// G¹ (`order` 2): λ = t² / (s² + t²), which meets each ribbon to first order.
+template <class N, class P> P sideBlendOf(const P &previous, const P &own, N s, N t, double mu, int order = 3) {
+  if (mu == 0) return P{};
+  const N sm = order == 3 ? s * s * s : s * s, tm = order == 3 ? t * t * t : t * t, sum = sm + tm;
+  if (!(sum.v > 1e-250)) return N(0.5 * mu) * (previous + own); // as the kernels: sum² would underflow
+  const N lambda = tm / sum;
+  return N(mu) * (lambda * previous + (N(1.0) - lambda) * own);
+}
+
+/// How far the nine-term correction patch of a corner can carry its two
+/// ribbons' disagreement into the interior: Σ |a_pq − b_pq| / (p! q!) · 2^−(p+q),
+/// the bound of its rational part Σ s^p t^q / (p! q!) (W_pq − b_pq) at
+/// s = t = ½, where the corner's reach ends.
+double cornerDisagreement(const CornerData2 &c) {
+  constexpr double inverseFactorial[3] = {1.0, 1.0, 0.5};
+  double sum = 0;
+  for (int p = 0; p <= 2; ++p)
+    for (int q = 0; q <= 2; ++q)
+      if (p || q) sum += norm(c.a[p][q] - c.b[p][q]) * inverseFactorial[p] * inverseFactorial[q] * std::ldexp(1.0, -(p + q));
+  return sum;
+}
+
+/// The diagonal of the bounding box of the patch's boundary curves.
+double boundaryDiagonal(const std::vector<LinearRibbon> &ribbons) {
+  Vec3 low{INFINITY, INFINITY, INFINITY}, high = -low;
+  for (const LinearRibbon &ribbon : ribbons)
+    for (int k = 0; k <= 16; ++k) {
+      const Vec3 p = ribbon.at(k / 16.0).P;
+      low = {std::min(low.x, p.x), std::min(low.y, p.y), std::min(low.z, p.z)};
+      high = {std::max(high.x, p.x), std::max(high.y, p.y), std::max(high.z, p.z)};
+    }
+  return norm(high - low);
+}
+
 /// gregoryCorrection2 in hyper-dual arithmetic.
 Dual2Vec3 gregoryCorrection2Second(const CornerData2 &c, Dual2 s, Dual2 t) {
   const Dual2 sp[4] = {1.0, s, s * s, s * s * s}, tp[4] = {1.0, t, t * t, t * t * t};
@@ -106,6 +146,54 @@ CornerData2 cornerData2(const SideEndData &end, const SideEndData &start) {
 }
 
 } // namespace
+
+/// The smoothstep from 0 at `from` to 1 at `to`.
+double smoothShare(double x, double from, double to) {
+  const double r = std::clamp((x - from) / (to - from), 0.0, 1.0);
+  return r * r * (3 - 2 * r);
+}
+
+std::vector<double> cornerBlendShares(const std::vector<LinearRibbon> &ribbons) {
+  // The correction patch carries each ribbon's end twist T' over the face
+  // (s t W11). Where T' at the end is not how T turns along the side, that
+  // extrapolation is wrong: an end tangent turned by 3° bends the curve
+  // within its first span, and T'(0) is 3–4 times T' 0.04 further on. The
+  // measure: both end twists' departure from T's secant slope over a
+  // quarter of the side, times s t = ¼ at the corner's reach, relative to
+  // the face size. At most 0.17 on every built-in (saddle-nodes 0.15),
+  // 0.28 with tangents turned by 1°, 0.32 on pocket3sided.lop (eq. 17 kept
+  // there); from 0.59 (median) to 0.81 with tangents turned by 3°, where
+  // the correction folded 9 of 12 faces.
+  constexpr double kCorrectionAlone = 0.35, kBlendAlone = 0.55, kSecant = 0.25;
+  const int n = static_cast<int>(ribbons.size());
+  const double size = boundaryDiagonal(ribbons);
+  std::vector<double> shares;
+  for (int i = 0; i < n; ++i) {
+    const LinearRibbon &own = ribbons[i], &previous = ribbons[(i + n - 1) % n];
+    const RibbonJet start = own.at(0.0), end = previous.at(1.0);
+    const double excess = norm(start.dT - (own.at(kSecant).T - start.T) / kSecant) +
+                          norm(end.dT - (end.T - previous.at(1 - kSecant).T) / kSecant);
+    shares.push_back(smoothShare(0.25 * excess / size, kCorrectionAlone, kBlendAlone));
+  }
+  return shares;
+}
+
+std::vector<double> cornerBlendShares(const std::vector<LinearRibbon> &ribbons,
+                                      const std::vector<ParabolicRibbon> &parabolic) {
+  // The disagreement bound relative to the face's size: at most 0.62 on
+  // every built-in but saddle-nodes (0.48 torus-mixed, 0.026 on the sphere),
+  // which keep eq. 17 exactly; from 1.16 on pocket3sided.lop and 2.9 on the
+  // sphere with end tangents turned by 1°, where the correction patch folds.
+  constexpr double kCorrectionAlone = 0.75, kBlendAlone = 1.0;
+  const int n = static_cast<int>(parabolic.size());
+  const double size = boundaryDiagonal(ribbons);
+  std::vector<double> shares;
+  for (int i = 0; i < n; ++i) {
+    const CornerData2 corner = cornerData2(parabolic[(i + n - 1) % n].end(), parabolic[i].start());
+    shares.push_back(smoothShare(cornerDisagreement(corner) / size, kCorrectionAlone, kBlendAlone));
+  }
+  return shares;
+}
 
 DualVec3 gregoryCorrection2(const CornerData2 &c, Dual s, Dual t) {
   const Dual sp[4] = {1.0, s, s * s, s * s * s}, tp[4] = {1.0, t, t * t, t * t * t};
@@ -196,7 +284,8 @@ DualVec3 gregoryCorrection(const CornerData &c, Dual s, Dual t) {
   return {q, qs * s.du + qt * t.du, qs * s.dv + qt * t.dv};
 }
 
-Patch::Patch(std::vector<LinearRibbon> ribbons, const SurfaceOptions &options, std::vector<ParabolicRibbon> parabolic)
+Patch::Patch(std::vector<LinearRibbon> ribbons, const SurfaceOptions &options, std::vector<ParabolicRibbon> parabolic,
+             std::vector<double> blendShares)
     : tables_(std::make_shared<TableCache>()), domain_(static_cast<int>(ribbons.size())), ribbons_(std::move(ribbons)), parabolic_(std::move(parabolic)),
       options_(options) {
   CURVENET_CHECK(ribbons_.size() >= 3 && ribbons_.size() <= kMaxSides);
@@ -222,6 +311,11 @@ Patch::Patch(std::vector<LinearRibbon> ribbons, const SurfaceOptions &options, s
     }
     kernelCorners_.push_back(cornerVectors(i));
     if (options_.scheme == Scheme::GregoryG2) cornerTerms_.push_back(kernels::gregoryCornerTerms(kernelCorners_[i]));
+  }
+  if (options_.scheme == Scheme::GregoryG1) blendShare_ = cornerBlendShares(ribbons_);
+  if (options_.scheme == Scheme::GregoryG2) {
+    blendShare_ = blendShares.empty() ? cornerBlendShares(ribbons_, parabolic_) : std::move(blendShares);
+    CURVENET_CHECK(blendShare_.size() == ribbons_.size(), "one blend share per corner");
   }
 }
 
@@ -273,10 +367,13 @@ DualVec3 Patch::gregory(Dual u, Dual v) const {
     if (b.isZero()) continue; // far corner: the interpolant may be undefined there
     const int prev = domain_.wrap(i - 1);
     const RibbonJet &left = jet[prev], &right = jet[i];
-    // I_{i,i−1} = R_{i−1}(s_{i−1}, s_i) + R_i(s_i, 1 − s_{i−1}) − Q(s_i, 1 − s_{i−1}) (eq. 17).
+    // I_{i,i−1} = R_{i−1}(s_{i−1}, s_i) + R_i(s_i, 1 − s_{i−1}) − Q(s_i, 1 − s_{i−1}) (eq. 17),
+    // its share μ taken from the two-ribbon blend (cornerBlendShares).
     const Dual si = s[i], ti = Dual(1.0) - s[prev];
-    const DualVec3 interpolant = ribbonAt(left, s[prev], si) + ribbonAt(right, si, ti) -
-                                 gregoryCorrection(corners_[i], si, ti);
+    const DualVec3 previous = ribbonAt(left, s[prev], si), own = ribbonAt(right, si, ti);
+    const double mu = blendShare_[i];
+    DualVec3 interpolant = sideBlendOf(previous, own, si, ti, mu, 2);
+    if (mu != 1) interpolant += Dual(1.0 - mu) * (previous + own - gregoryCorrection(corners_[i], si, ti));
     result += b * interpolant;
   }
   return result;
@@ -307,8 +404,10 @@ Dual2Vec3 Patch::evaluateSecondOrder(double uValue, double vValue) const {
     if (b.isZero()) continue;
     const int prev = domain_.wrap(i - 1);
     const Dual2 si = s[i], ti = Dual2(1.0) - s[prev];
-    const Dual2Vec3 interpolant =
-        ribbonAt2(jet[prev], s[prev], si) + ribbonAt2(jet[i], si, ti) - gregoryCorrection2Second(corners2_[i], si, ti);
+    const Dual2Vec3 previous = ribbonAt2(jet[prev], s[prev], si), own = ribbonAt2(jet[i], si, ti);
+    const double mu = blendShare_[i];
+    Dual2Vec3 interpolant = sideBlendOf(previous, own, si, ti, mu);
+    if (mu != 1) interpolant += Dual2(1.0 - mu) * (previous + own - gregoryCorrection2Second(corners2_[i], si, ti));
     result += b * interpolant;
   }
   return result;
@@ -337,9 +436,12 @@ DualVec3 Patch::gregoryG2(Dual u, Dual v) const {
     if (b.isZero()) continue; // far corner: the interpolant may be undefined there
     const int prev = domain_.wrap(i - 1);
     const Dual si = s[i], ti = Dual(1.0) - s[prev];
-    // I_{i,i−1} = R_{i−1}(s_{i−1}, s_i) + R_i(s_i, 1 − s_{i−1}) − Q (eq. 17).
-    const DualVec3 interpolant = ribbonAt(jet[prev], s[prev], si) + ribbonAt(jet[i], si, ti) -
-                                 gregoryCorrection2(cornerTerms_[i], corners2_[i], si, ti);
+    // I_{i,i−1} = R_{i−1}(s_{i−1}, s_i) + R_i(s_i, 1 − s_{i−1}) − Q (eq. 17),
+    // its share μ taken from the two-ribbon blend (cornerBlendShares).
+    const DualVec3 previous = ribbonAt(jet[prev], s[prev], si), own = ribbonAt(jet[i], si, ti);
+    const double mu = blendShare_[i];
+    DualVec3 interpolant = sideBlendOf(previous, own, si, ti, mu);
+    if (mu != 1) interpolant += Dual(1.0 - mu) * (previous + own - gregoryCorrection2(cornerTerms_[i], corners2_[i], si, ti));
     result += b * interpolant;
   }
   return result;

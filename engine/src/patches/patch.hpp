@@ -59,6 +59,16 @@ struct CornerData {
   Vec3 a00, a10, a01, a11, b10, b01, b11;
 };
 
+/// gregory-g2: each corner's share μ ∈ [0, 1] of the two-ribbon blend in
+/// its interpolant (kernels::GregorySamples::blendShare), from how far the
+/// nine-term correction patch would carry the ribbons' disagreement there.
+std::vector<double> cornerBlendShares(const std::vector<LinearRibbon> &ribbons,
+                                      const std::vector<ParabolicRibbon> &parabolic);
+/// gregory-g1: the same from how far the ribbons' end twists, which the
+/// four-term correction patch extrapolates, depart from how T turns along
+/// each side (corner i at side i's start).
+std::vector<double> cornerBlendShares(const std::vector<LinearRibbon> &ribbons);
+
 /// c in the kernels' G¹ layout (a00, a10, b10, a01, b01, a11, b11).
 kernels::GregoryCorner kernelCorner(const CornerData &c);
 
@@ -66,11 +76,16 @@ class Patch {
 public:
   /// `parabolic` (one per side, over the same linear ribbons) is required by
   /// gregory-g2 and ignored by the other schemes.
+  /// gregory-g2: `blendShares` (one per corner, see cornerBlendShares) or
+  /// empty to compute them from the ribbons.
   Patch(std::vector<LinearRibbon> ribbons, const SurfaceOptions &options,
-        std::vector<ParabolicRibbon> parabolic = {});
+        std::vector<ParabolicRibbon> parabolic = {}, std::vector<double> blendShares = {});
 
   const RegularDomain &domain() const { return domain_; }
   const LinearRibbon &ribbon(int side) const { return ribbons_[domain_.wrap(side)]; }
+  /// Gregory schemes: corner i's share of the two-ribbon blend
+  /// (cornerBlendShares); empty for the other schemes.
+  const std::vector<double> &blendShares() const { return blendShare_; }
 
   /// Surface point with exact ∂/∂u, ∂/∂v at domain point (u, v).
   DualVec3 evaluate(double u, double v) const;
@@ -212,6 +227,9 @@ private:
   /// G²: the parabolic ribbons' corner data (cornerData2 of the ends meeting
   /// at corner i), computed once instead of at every point.
   std::vector<CornerData2> corners2_;
+  /// Gregory schemes: corner i's share of the two-ribbon blend in its
+  /// interpolant (kernels::GregorySamples::blendShare; cornerBlendShares).
+  std::vector<double> blendShare_;
   /// The same corner data as the kernels take it, computed once: the
   /// Gregory schemes' correction patches (cornerVectors) and, for G², their
   /// rearranged form; composite-ribbon: corners_ and endCorners_.

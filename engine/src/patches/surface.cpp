@@ -487,6 +487,7 @@ FaceBuild buildFace(const Impl &impl, int f) {
   }
   // End conditions need the neighbouring sides' tangents (docs/design.md §3).
   const int n = static_cast<int>(ribbons.size());
+  std::vector<Vec3> startTargets, endTargets;
   for (int i = 0; i < n; ++i) {
     const LinearRibbon &prev = ribbons[(i + n - 1) % n], &next = ribbons[(i + 1) % n];
     LinearRibbon &ribbon = ribbons[i];
@@ -504,16 +505,31 @@ FaceBuild buildFace(const Impl &impl, int f) {
     // correction patch meets compatible twists (see ScalarBlend).
     ribbon.setEndConditions(startTarget, endTarget,
                             g2 ? LinearRibbon::ScalarBlend::Quintic : LinearRibbon::ScalarBlend::Linear);
+    startTargets.push_back(startTarget), endTargets.push_back(endTarget);
   }
   std::vector<ParabolicRibbon> parabolic;
-  if (g2)
-    parabolic = matchCornerTerms(ribbons, [&](const LinearRibbon &ribbon) {
-      std::vector<const TransversalCurvature *> curvatures;
-      for (const LinearRibbon::Piece &piece : ribbon.pieces())
-        curvatures.push_back(impl.edgeCurvatures[piece.segment].get());
-      return ParabolicRibbon(ribbon, std::move(curvatures));
-    });
-  result.patch = std::make_shared<const Patch>(std::move(ribbons), impl.options, std::move(parabolic));
+  auto parabolicOf = [&](const LinearRibbon &ribbon) {
+    std::vector<const TransversalCurvature *> curvatures;
+    for (const LinearRibbon::Piece &piece : ribbon.pieces())
+      curvatures.push_back(impl.edgeCurvatures[piece.segment].get());
+    return ParabolicRibbon(ribbon, std::move(curvatures));
+  };
+  std::vector<double> blendShares;
+  if (g2) {
+    for (const LinearRibbon &ribbon : ribbons) parabolic.push_back(parabolicOf(ribbon));
+    blendShares = cornerBlendShares(ribbons, parabolic);
+    parabolic = matchCornerTerms(ribbons, parabolicOf);
+    // A side whose corners both take the two-ribbon blend alone meets no
+    // correction patch, which the quintic blend of α, β (and the corner-term
+    // matching) is for: there it takes the linear blend of the unit frame,
+    // as the G¹ ribbons do, whose |T| stays within its end values.
+    for (int i = 0; i < n; ++i)
+      if (blendShares[i] == 1 && blendShares[(i + 1) % n] == 1) {
+        ribbons[i].setEndConditions(startTargets[i], endTargets[i], LinearRibbon::ScalarBlend::Linear);
+        parabolic[i] = parabolicOf(ribbons[i]);
+      }
+  }
+  result.patch = std::make_shared<const Patch>(std::move(ribbons), impl.options, std::move(parabolic), std::move(blendShares));
   try {
     result.folded = patchFolds(*result.patch);
   } catch (const NonFinitePatch &) {

@@ -398,6 +398,7 @@ void Patch::gregoryPositionsFrom(std::size_t count, const double *const *sideVal
   scratch.reset(count, static_cast<std::size_t>(n) * (dims + 1));
   kernels::GregorySamples in;
   in.sides = n, in.parabolic = g2;
+  for (int i = 0; i < int(blendShare_.size()); ++i) in.blendShare[i] = blendShare_[i];
   for (int i = 0; i < n; ++i) {
     // The side parameters serve as table parameters as they are (they lie
     // in [0, 1]), except on sides made of several segments: there the
@@ -601,6 +602,7 @@ void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bo
     // The Gregory formula (eqs. 16–18, 22) with its derivatives in one kernel pass.
     kernels::GregoryJetSamples in;
     in.values.sides = n, in.values.parabolic = g2;
+    for (int i = 0; i < int(blendShare_.size()); ++i) in.values.blendShare[i] = blendShare_[i];
     for (int i = 0; i < n; ++i) {
       in.values.s[i] = side[i].v, in.sDu[i] = side[i].du, in.sDv[i] = side[i].dv;
       in.values.blend[i] = blend[i].v, in.blendDu[i] = blend[i].du, in.blendDv[i] = blend[i].dv;

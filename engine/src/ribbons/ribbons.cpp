@@ -241,6 +241,7 @@ Vec3 LinearRibbon::fenceDirection(double s) const {
 
 void LinearRibbon::setEndConditions(const Vec3 &startTarget, const Vec3 &endTarget, ScalarBlend blend) {
   blend_ = blend;
+  hasEndCurvatures_ = false; // set for the previous end conditions, if any
   // T = αD + βP' with D ⊥ P': the components of the target along D and P'
   // (a target slightly out of the tangent plane is projected onto it).
   auto solve = [&](double s, const Vec3 &target, double &alpha, double &beta) {

@@ -116,6 +116,15 @@ struct GregorySamples {
   /// group of a plan's samples for all n corners. Null: computed here.
   const double *weights[kMaxSides] = {};
   std::size_t weightStride = 0;
+  /// Corner i's share μ_i ∈ [0, 1] of the two-ribbon blend in its
+  /// interpolant, I_i = (1 − μ_i)(R_{i−1} + R_i − Q_i) + μ_i (λ_i R_{i−1} +
+  /// (1 − λ_i) R_i), λ_i = t_i^m / (s_i^m + t_i^m) (½ at the corner itself;
+  /// m = 3 for G², 2 for G¹). Both parts meet each ribbon along its side to
+  /// the scheme's order; the blend is a convex combination of ribbon
+  /// values, so it cannot carry the ribbons' disagreement at the corner
+  /// into the interior as Q_i does. 0 (the default) is [SV14] eq. 17 alone;
+  /// at 1, Q_i is not evaluated.
+  double blendShare[kMaxSides] = {};
 };
 
 /// The correction patch's constant vectors at corner i (where side i − 1
@@ -154,7 +163,8 @@ void gregoryCornerWeights(std::size_t count, const double *s, const double *sPre
 
 /// (b) Gregory patch positions ([SV14] eqs. 16–18, 22):
 /// out[c][k] = Σ_i B_i (R_{i−1}(s_{i−1}, s_i) + R_i(s_i, t_i) − Q_i(s_i, t_i)),
-/// t_i = 1 − s_{i−1}, R(σ, δ) = P(σ) + δ T(σ) [+ ½ δ² C(σ)]. The rational
+/// t_i = 1 − s_{i−1}, R(σ, δ) = P(σ) + δ T(σ) [+ ½ δ² C(σ)]; corners with
+/// a blendShare take that share from the two-ribbon blend instead. The rational
 /// weights of each corner share one division (batch inversion). Samples
 /// exactly at a corner (s_i = t_i = 0) give that corner's finite limit.
 /// G² uses each corner's GregoryCornerTerms: pass them in `terms` (one per
