@@ -333,3 +333,29 @@ TEST(ExternalMasters, CheckReportsTheMasterSurfaces) {
   const curvenet::test::CliRun text = curvenet::test::runCli("check builtin:setback-external-masters --scheme gregory-g2");
   EXPECT_TRUE(contains(text.out, "master surface 0, face 0")) << text.out;
 }
+
+// An edit next to the master edges rebuilds in part and evaluates bit for
+// bit like a full build: the edited curve's vertices take their master's
+// tensor again, the master edges there their master's fence.
+TEST(ExternalMasters, PartialRebuildMatchesAFullBuild) {
+  NetworkDescription d = builtinNetwork("setback-external-masters");
+  SurfaceOptions g2;
+  g2.scheme = Scheme::GregoryG2;
+  g2.curves = CurveHandling::Kept;
+  const Surface before = Surface::build(Network::build(d), g2);
+  // Move a setback curve's inner control points a little within its plane.
+  BSplineCurve &setback = d.curves[3];
+  std::vector<Vec3> points = setback.controlPoints();
+  points[1] = points[1] * 0.97;
+  points[2] = points[2] * 1.02;
+  setback = BSplineCurve(setback.degree(), setback.knots(), points, setback.weights());
+  const Network edited = Network::build(d);
+  const SurfaceEdit edit = before.rebuildAfterEdit(edited);
+  EXPECT_TRUE(edit.partial);
+  const Surface full = Surface::build(edited, g2);
+  for (const Vec2 &uv : {Vec2{0, 0}, Vec2{0.3, -0.2}, Vec2{-0.5, 0.4}}) {
+    EXPECT_EQ(edit.surface.evaluate(0, uv).point, full.evaluate(0, uv).point);
+    EXPECT_EQ(edit.surface.evaluate(0, uv).du, full.evaluate(0, uv).du);
+  }
+  EXPECT_LE(contactFigures(edit.surface).curvatureJump, 1e-4);
+}
