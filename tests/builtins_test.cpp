@@ -88,7 +88,8 @@ TEST(Builtins, NamesOrderAndDefault) {
   EXPECT_EQ(names, (std::vector<std::string>{"pentagon", "sphere-dodecahedron", "ellipsoid-truncated-icosahedron",
                                               "torus-mixed", "saddle-nodes", "hemisphere-tjunction",
                                               "tjunction-surrounded", "tjunction-vertex", "hull-like", "concave-L",
-                                              "ring", "uneven-loop", "many-sided", "setback-vertex-blend"}));
+                                              "ring", "uneven-loop", "many-sided", "setback-vertex-blend",
+                                              "setback-external-masters"}));
   EXPECT_EQ(defaultBuiltinName(), "ellipsoid-truncated-icosahedron");
 }
 

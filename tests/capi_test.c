@@ -293,12 +293,84 @@ static void shape(void) {
   EXPECT(curvenet_model_load("builtin:pentagon", &options, &model, &status) == CURVENET_INVALID_ARGUMENT);
 }
 
+/* ---- Master surfaces given from outside -------------------------------- */
+
+/* A quarter cylinder (radius 1, axis z; NURBS) is the master of the top arc
+ * of a 4-sided face bending in below it (docs/network-format.md's example):
+ * the face's normal along the arc is the cylinder's radial normal; a curve
+ * that does not lie on its master is refused naming the edge. */
+static void externalMasters(void) {
+  const double w = 0.70710678118654752440;
+  const double arcKnots[6] = {0, 0, 0, 1, 1, 1};
+  const double top[9] = {1, 0, 0, 1, 1, 0, 0, 1, 0}, bottom[9] = {0.6, 0, -0.8, 0.6, 0.6, -0.8, 0, 0.6, -0.8};
+  const double arcWeights[3] = {1, w, 1};
+  const double sideA[12] = {1, 0, 0, 1, 0, -0.25, 1, 0, -0.5, 0.6, 0, -0.8};
+  const double sideB[12] = {0, 1, 0, 0, 1, -0.25, 0, 1, -0.5, 0, 0.6, -0.8};
+  const curvenet_curve curves[4] = {{2, arcKnots, 6, top, 3, arcWeights},
+                                    {3, bezierKnots, 8, sideA, 4, NULL},
+                                    {3, bezierKnots, 8, sideB, 4, NULL},
+                                    {2, arcKnots, 6, bottom, 3, arcWeights}};
+  const curvenet_side sides[4] = {{0, 0, 1}, {2, 0, 1}, {3, 1, 0}, {1, 1, 0}};
+  const curvenet_face face = {sides, 4};
+  const double linearKnots[4] = {0, 0, 1, 1};
+  const double net[18] = {1, 0, 0, 1, 0, 1, 1, 1, 0, 1, 1, 1, 0, 1, 0, 0, 1, 1};
+  const double netWeights[6] = {1, 1, w, w, 1, 1};
+  const curvenet_master_surface cylinder = {2, 1, arcKnots, 6, linearKnots, 4, net, 3, 2, netWeights};
+  curvenet_master_edge edge = {0, 0};
+  curvenet_surface_options options;
+  curvenet_surface_options_init(&options);
+  options.scheme = CURVENET_GREGORY_G2;
+  curvenet_status status;
+  curvenet_model *model = NULL;
+  EXPECT(curvenet_model_build_with_masters(curves, 4, &face, 1, &cylinder, 1, &edge, 1, &options, &model, &status) ==
+         CURVENET_OK);
+  if (!model) {
+    fprintf(stderr, "%s\n", status.message);
+    return;
+  }
+  /* Points of domain side 0 (the arc): normals radial to 1e-8 rad. */
+  double c0[2], c1[2], worst = 0;
+  EXPECT(curvenet_model_domain_corner(model, 0, 0, c0, &status) == CURVENET_OK);
+  EXPECT(curvenet_model_domain_corner(model, 0, 1, c1, &status) == CURVENET_OK);
+  for (int k = 1; k < 8; ++k) {
+    const double t = k / 8.0, uv[2] = {c0[0] + t * (c1[0] - c0[0]), c0[1] + t * (c1[1] - c0[1])};
+    curvenet_point p;
+    EXPECT(curvenet_model_evaluate(model, 0, uv, 1, &p, NULL, &status) == CURVENET_OK);
+    const double r = sqrt(p.point[0] * p.point[0] + p.point[1] * p.point[1]);
+    const double radial[3] = {p.point[0] / r, p.point[1] / r, 0};
+    /* |n × radial|: the sine of the angle, accurate for tiny angles. */
+    const double cx = p.normal[1] * radial[2] - p.normal[2] * radial[1];
+    const double cy = p.normal[2] * radial[0] - p.normal[0] * radial[2];
+    const double cz = p.normal[0] * radial[1] - p.normal[1] * radial[0];
+    const double angle = sqrt(cx * cx + cy * cy + cz * cz);
+    worst = angle > worst ? angle : worst;
+  }
+  EXPECT(worst < 1e-8);
+  curvenet_model_destroy(model);
+  /* The bottom arc is not on the cylinder: refused, naming the edge. */
+  edge.curve = 3;
+  model = NULL;
+  EXPECT(curvenet_model_build_with_masters(curves, 4, &face, 1, &cylinder, 1, &edge, 1, &options, &model, &status) ==
+         CURVENET_INVALID_INPUT);
+  EXPECT(model == NULL && strcmp(status.element, "edges[0]") == 0);
+  /* A knot vector one short: the error names the surface. */
+  curvenet_master_surface ragged = cylinder;
+  ragged.knot_v_count = 3;
+  edge.curve = 0;
+  EXPECT(curvenet_model_build_with_masters(curves, 4, &face, 1, &ragged, 1, &edge, 1, &options, &model, &status) ==
+         CURVENET_INVALID_INPUT);
+  EXPECT(strcmp(status.element, "surfaces[0]") == 0);
+}
+
+/* ---- end of master surfaces -------------------------------------------- */
+
 int main(void) {
   loopAndEvaluate();
   shape();
   errors();
   twoFaces();
   keptMasters();
+  externalMasters();
   if (failures) fprintf(stderr, "%d check(s) failed\n", failures);
   else printf("all C interface checks passed\n");
   return failures ? 1 : 0;

@@ -9,6 +9,7 @@
 
 #include "curvenet/continuity.hpp"
 #include "curvenet/io.hpp"
+#include "curvenet/master_contact.hpp"
 #include "curvenet/network.hpp"
 #include "curvenet/surface.hpp"
 
@@ -90,4 +91,27 @@ TEST(NetworkFormatDocument, ExamplesWithAReferenceLieOnIt) {
     EXPECT_LT(g2, g1);
   }
   EXPECT_GE(withReference, 1);
+}
+
+// An example that names master surfaces: its faces meet each master with
+// the master's tangent plane under every transfinite scheme, and with its
+// curvature under gregory-g2 (measured against the surface itself).
+TEST(NetworkFormatDocument, ExamplesWithMasterSurfacesMeetThem) {
+  int withMasters = 0;
+  for (const Example &example : examples()) {
+    const Network network = Network::build(parse(example));
+    if (network.description().surfaces.empty()) continue;
+    ++withMasters;
+    SCOPED_TRACE("example at line " + std::to_string(example.line));
+    for (Scheme scheme : {Scheme::GregoryG1, Scheme::CompositeRibbon, Scheme::GregoryG2}) {
+      const std::vector<MasterSurfaceContact> contacts = measureMasterSurfaceContact(Surface::build(network, {scheme}));
+      EXPECT_FALSE(contacts.empty());
+      for (const MasterSurfaceContact &c : contacts) {
+        EXPECT_LE(c.maxNormalAngleDeg, 1e-6) << schemeName(scheme);
+        EXPECT_LE(c.maxDistance, 1e-12) << schemeName(scheme);
+        if (scheme == Scheme::GregoryG2) EXPECT_LE(c.maxCurvatureJump, 1e-4);
+      }
+    }
+  }
+  EXPECT_GE(withMasters, 1);
 }

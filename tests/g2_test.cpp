@@ -228,6 +228,9 @@ TEST(G2VersusG1, CurvatureJumpAndReferenceDeviation) {
     const Network &net = builtin(name);
     const Surface g1 = Surface::build(net, {});
     if (!net.reference()) {
+      // setback-external-masters is one face: no shared edge to jump across
+      // (tests/master_surface_test.cpp measures it against its masters).
+      if (measureCurvatureJump(g1).samples.empty()) continue;
       // setback-vertex-blend: no reference to deviate from; every shared
       // edge is a master edge, where the G² blend takes the master's curvature.
       const double jump1 = measureCurvatureJump(g1).maxJump;

@@ -8,6 +8,7 @@
 
 #include "curvenet/continuity.hpp"
 #include "curvenet/curvature_jump.hpp"
+#include "curvenet/master_contact.hpp"
 #include "curvenet/shape.hpp"
 
 namespace curvenet::cli {
@@ -174,6 +175,21 @@ void addSurfaceReport(nlohmann::json &report, const Surface &surface, const Shap
                       {"samples", m.samples}});
     }
     report["masters"] = std::move(list);
+  }
+  // Master surfaces given from outside: each face against the surface itself.
+  if (const std::vector<MasterSurfaceContact> contacts = measureMasterSurfaceContact(surface); !contacts.empty()) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const MasterSurfaceContact &m : contacts)
+      list.push_back({{"edge", m.segment},
+                      {"curve", m.curve},
+                      {"master_surface", m.masterSurface},
+                      {"face", m.face},
+                      {"max_distance", m.maxDistance},
+                      {"max_normal_angle_deg", m.maxNormalAngleDeg},
+                      {"max_curvature_jump", m.maxCurvatureJump},
+                      {"mean_curvature_jump", m.meanCurvatureJump},
+                      {"samples", m.samples}});
+    report["master_surfaces"] = std::move(list);
   }
   if (const auto d = measureReferenceDeviation(surface, resolution)) {
     report["reference"] = {{"max_deviation", d->maxDeviation},
@@ -362,6 +378,16 @@ void printReportTable(const nlohmann::json &report) {
                   name.c_str(), name.empty() ? "" : ")", m["slave_face"].get<int>(),
                   m["max_curvature_jump"].get<double>(), m["mean_curvature_jump"].get<double>());
     }
+  }
+  if (report.contains("master_surfaces")) {
+    std::printf("\nmaster surfaces (each face against the surface its edge names; distance relative to the diagonal, "
+                "jump as max_curvature_jump):\n");
+    for (const auto &m : report["master_surfaces"])
+      std::printf("  edge %d (curve %d): master surface %d, face %d, max distance %.3g, max normal angle %.3g deg, "
+                  "max curvature jump %.3g (mean %.3g)\n",
+                  m["edge"].get<int>(), m["curve"].get<int>(), m["master_surface"].get<int>(), m["face"].get<int>(),
+                  m["max_distance"].get<double>(), m["max_normal_angle_deg"].get<double>(),
+                  m["max_curvature_jump"].get<double>(), m["mean_curvature_jump"].get<double>());
   }
   if (report.contains("reference")) {
     std::printf("\nreference deviation (relative to the diagonal):\n");

@@ -13,6 +13,7 @@
 #include "curvenet/continuity.hpp"
 #include "curvenet/curvature_jump.hpp"
 #include "curvenet/io.hpp"
+#include "curvenet/master_contact.hpp"
 #include "curvenet/network.hpp"
 #include "curvenet/surface.hpp"
 
@@ -165,6 +166,27 @@ std::vector<std::string> mastersTable() {
   return lines;
 }
 
+/// setback-external-masters: each scheme's faces against the NURBS master
+/// surfaces their edges name (what `curvenet check` lists as master_surfaces).
+std::vector<std::string> externalMastersTable() {
+  const Network network = builtin("setback-external-masters");
+  std::vector<std::string> lines = {header({"`curvenet check builtin:setback-external-masters`",
+                                            "max normal angle to the masters (°)", "max curvature jump to the masters",
+                                            "max distance", "folded faces"})};
+  for (Scheme scheme : kTransfiniteSchemes) {
+    const Surface surface = Surface::build(network, {scheme});
+    double angle = 0, jump = 0, distance = 0;
+    for (const MasterSurfaceContact &c : measureMasterSurfaceContact(surface)) {
+      angle = std::max(angle, c.maxNormalAngleDeg);
+      jump = std::max(jump, c.maxCurvatureJump);
+      distance = std::max(distance, c.maxDistance);
+    }
+    lines.push_back(row({code("--scheme " + schemeName(scheme)), sci(angle), sci(jump), sci(distance),
+                         foldedList(surface)}));
+  }
+  return lines;
+}
+
 std::vector<std::string> connectionCurvesTable() {
   std::vector<std::string> lines = {header({"network", "patches", "hidden seams", "seam jump gregory-g1",
                                             "seam jump gregory-g2", "folded faces (g1 / g2)"})};
@@ -283,8 +305,8 @@ std::vector<std::string> headlineRows(AnalyticFigures &figures) {
 } // namespace
 
 std::vector<std::string> tableNames() {
-  return {"headline", "builtins", "continuity", "bezier", "edge-curvature", "masters", "connection-curves",
-          "approximation", "format-example"};
+  return {"headline",         "builtins",          "continuity",    "bezier",        "edge-curvature", "masters",
+          "external-masters", "connection-curves", "approximation", "format-example"};
 }
 
 struct TableMaker::Measured {
@@ -305,6 +327,7 @@ Table TableMaker::compute(const std::string &name) {
       {"bezier", bezierTable},
       {"edge-curvature", edgeCurvatureTable},
       {"masters", mastersTable},
+      {"external-masters", externalMastersTable},
       {"connection-curves", connectionCurvesTable},
       {"approximation", approximationTable},
       {"format-example", [&] { return formatExampleTable(repository_); }}};

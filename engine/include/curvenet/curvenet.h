@@ -180,6 +180,45 @@ curvenet_status_code curvenet_model_build(const curvenet_curve *curves, size_t c
                                           const curvenet_surface_options *options, curvenet_model **model,
                                           curvenet_status *status);
 
+/* ---- Master surfaces given from outside ([SV14] Sec. 5.1) -------------- */
+
+/* A tensor-product B-spline / NURBS surface: degrees 1 … 15, clamped knot
+ * vectors of count_u + degree_u + 1 and count_v + degree_v + 1 knots, the
+ * control net row by row (point (i, j), i along u, j along v, at
+ * points[3 * (i * count_v + j)]), weights NULL (polynomial) or one positive
+ * value per point in the same order. */
+typedef struct curvenet_master_surface {
+  int degree_u, degree_v;
+  const double *knots_u;
+  size_t knot_u_count;
+  const double *knots_v;
+  size_t knot_v_count;
+  const double *points;
+  size_t count_u, count_v;
+  const double *weights;
+} curvenet_master_surface;
+
+/* Curve `curve` takes surface `surface` (an index into the surfaces given)
+ * as its master: the faces along it meet the surface G1 (gregory-g1,
+ * composite-ribbon) or G2 (gregory-g2). The curve must lie on the surface
+ * within the vertex tolerance. */
+typedef struct curvenet_master_edge {
+  int curve;
+  int surface;
+} curvenet_master_edge;
+
+/* curvenet_model_build with master surfaces: `surfaces` and the edges that
+ * name them. Errors name the element ("surfaces[1]: knots in u …",
+ * "edges[0]: curve 3 is 0.002 from master surface 1 …"). */
+curvenet_status_code curvenet_model_build_with_masters(const curvenet_curve *curves, size_t curve_count,
+                                                       const curvenet_face *faces, size_t face_count,
+                                                       const curvenet_master_surface *surfaces, size_t surface_count,
+                                                       const curvenet_master_edge *edges, size_t edge_count,
+                                                       const curvenet_surface_options *options,
+                                                       curvenet_model **model, curvenet_status *status);
+
+/* ---- end of master surfaces -------------------------------------------- */
+
 /* "builtin:NAME" or a network file (.json native format, .lop loop file). */
 curvenet_status_code curvenet_model_load(const char *input, const curvenet_surface_options *options,
                                          curvenet_model **model, curvenet_status *status);

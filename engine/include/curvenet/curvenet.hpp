@@ -143,6 +143,14 @@ Result<BSplineCurve> makeCurve(int degree, std::vector<double> knots, std::vecto
                                std::vector<double> weights = {});
 /// The Bézier curve of degree points.size() − 1 (at least 2 points) on [0, 1].
 Result<BSplineCurve> makeBezier(std::vector<Vec3> controlPoints);
+/// A tensor-product B-spline / NURBS surface (bspline_surface.hpp) from its
+/// data, without throwing: the control net row by row (point (i, j) at
+/// i · countV + j), weights empty or one per point. Put it in
+/// NetworkDescription::surfaces and name it from an edge
+/// (EdgeDescription::masterSurface) to make it that edge's master.
+Result<BSplineSurface> makeSurface(int degreeU, int degreeV, std::vector<double> knotsU, std::vector<double> knotsV,
+                                   int countU, int countV, std::vector<Vec3> controlPoints,
+                                   std::vector<double> weights = {});
 
 /// How a batch call spreads its work.
 struct BatchOptions {

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "curvenet/bspline_surface.hpp"
 #include "curvenet/curve.hpp"
 #include "curvenet/reference.hpp"
 
@@ -63,6 +64,17 @@ struct EdgeDescription {
   /// cross curvatures on it (EdgeCurvature::Averaging) whatever the surface's
   /// source is elsewhere, so the seam is curvature continuous.
   bool connection = false;
+  /// Master surface given from outside ([SV14] Sec. 5.1): an index into
+  /// NetworkDescription::surfaces. The curve must lie on that surface
+  /// within the description's tolerance; every face along the curve then
+  /// takes the surface's tangent plane (the normal fence is the surface
+  /// normal, by closest-point projection of the curve samples) and, under
+  /// gregory-g2, its normal curvature across the curve (from its second
+  /// fundamental form), so gregory-g1 meets the surface G¹ and gregory-g2
+  /// G². The curve's end vertices take the surface's curvature tensor too.
+  /// The curve may be a boundary of the network (the master is not one of
+  /// its faces). At most one of masterFace and masterSurface. -1: none.
+  int masterSurface = -1;
 };
 
 struct NetworkDescription {
@@ -74,6 +86,9 @@ struct NetworkDescription {
   /// are the same vertex, and loops must close within it.
   double tolerance = 1e-7;
   std::optional<ReferenceSurface> reference;
+  /// Surfaces given from outside, which edges may name as their master
+  /// (EdgeDescription::masterSurface).
+  std::vector<BSplineSurface> surfaces;
   /// Network::build inserts connection curves where a face needs them
   /// (insertConnectionCurves); false builds the loops as given (a face with
   /// holes is then refused).
@@ -142,6 +157,7 @@ struct Segment {
   double sourceFrom = 0, sourceTo = 0; ///< range of the source curve (sourceFrom < sourceTo)
   std::array<int, 2> faces{-1, -1};    ///< faces[1] == -1 on the boundary
   int masterFace = -1;                 ///< from EdgeDescription: one of `faces`, or -1
+  int masterSurface = -1;              ///< from EdgeDescription: index into description().surfaces, or -1
   bool connection = false;             ///< from EdgeDescription: a hidden seam of a composite face
   bool isBoundary() const { return faces[1] < 0; }
 };
@@ -176,7 +192,10 @@ public:
   /// loop that does not close, fewer than 2 or more than 8 sides, a segment
   /// used by more than two faces or twice in the same direction; an edge
   /// setting naming an unknown curve, a curve twice, or a master face that
-  /// does not border every piece of its curve with a neighbour on the other side.
+  /// does not border every piece of its curve with a neighbour on the other side;
+  /// a master surface that does not exist, an edge naming both a master face
+  /// and a master surface, or a curve farther from its master surface than the
+  /// tolerance (the message gives the distance found and the curve parameter).
   static Network build(const NetworkDescription &description, const std::string &file = {});
 
   const std::string &name() const { return name_; }

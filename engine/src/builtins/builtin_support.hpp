@@ -67,6 +67,8 @@ BuiltinData manySidedLoop(int sides);
 
 // Master–slave vertex blend ([SV14] Sec. 5.1, Fig. 8), see setback.cpp.
 BuiltinData setbackVertexBlend();
+// The same blend with the fillets given as external NURBS master surfaces.
+BuiltinData setbackExternalMasters();
 
 // Cubic Bézier networks with T-junctions ([OSK11]), see tjunctions.cpp.
 BuiltinData hemisphereTJunction();

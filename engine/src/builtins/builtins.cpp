@@ -59,6 +59,9 @@ const std::vector<Entry> &entries() {
       {{"setback-vertex-blend", "box corner with cylindrical fillets of radii 0.30, 0.22, 0.38 (the masters) and a "
                                 "6-sided setback vertex blend G2 to all three (the slave); no reference surface"},
        [] { return setbackVertexBlend(); }},
+      {{"setback-external-masters", "the setback vertex blend alone, its three fillets (obliquely trimmed) given as "
+                                    "external NURBS cylinders that its arc edges name as master surfaces"},
+       [] { return setbackExternalMasters(); }},
   };
   return list;
 }

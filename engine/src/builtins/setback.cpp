@@ -130,6 +130,120 @@ BuiltinData setbackVertexBlend() {
   return data;
 }
 
+// ---- setback-external-masters ----------------------------------------------
+//
+// Built-in `setback-external-masters` ([SV14] Sec. 5.1, Fig. 8 with the
+// primary surfaces given from outside): the same box corner, but the network
+// is the 6-sided vertex blend alone, and the three fillets are external
+// master surfaces — exact NURBS cylinders — that the blend's arc edges name
+// (EdgeDescription::masterSurface). Each fillet is trimmed obliquely: its
+// end curve runs from the setback s_a0 on plane b (θ = 0) to another
+// setback s_a1 on plane c (θ = π/2), so the edge is not a cross-section
+// circle and the master's curvature across it is not zero: with the master
+// data ignored, the blend's tangent planes and curvature along those edges
+// come from the two curves at each corner alone and miss the cylinders.
+//
+// Fillet a as a NURBS surface: u ∈ [0, 1] along the quarter circle (rational,
+// degree 3: the exact quadratic arc elevated), v ∈ [0, 1] straight along the
+// axis from the far end t = −L (v = 0) to the oblique trim (v = 1), where
+// t = −s_a0 (1 − u) − s_a1 u. The trim is the same rational cubic, the
+// blend's side.
+
+namespace {
+
+constexpr std::array<std::array<double, 2>, 3> kObliqueSetback = {{{0.72, 0.60}, {0.66, 0.78}, {0.80, 0.68}}};
+
+/// The quarter circle of fillet a at axis position 0 as a homogeneous
+/// quadratic (control points times weights, and the weights).
+struct HomogeneousArc {
+  std::array<Vec3, 3> points;
+  std::array<double, 3> weights;
+};
+
+HomogeneousArc quarterCircle(int a) {
+  const Vec3 p0 = filletPoint(a, 0, 0), p2 = filletPoint(a, 0, std::numbers::pi / 2);
+  const Vec3 middle = p0 + axis((a + 2) % 3) * kRadius[size_t(a)];
+  const double w = std::sqrt(0.5);
+  return {{p0, middle * w, p2}, {1, w, 1}};
+}
+
+/// Fillet a's rational cubic section where the axis position is linear in
+/// u from t0 (u = 0) to t1 (u = 1): the homogeneous arc elevated to degree 3
+/// plus the axis term t(u) w(u) e_a (a linear times a quadratic Bernstein
+/// product). The weights do not depend on t0, t1, so all sections of one
+/// fillet share them and a ruled surface between two is the cylinder.
+BSplineCurve filletSection(int a, double t0, double t1) {
+  const HomogeneousArc arc = quarterCircle(a);
+  const auto &h = arc.points;
+  const auto &w = arc.weights;
+  const std::array<Vec3, 4> elevated = {h[0], (h[0] + h[1] * 2) / 3, (h[1] * 2 + h[2]) / 3, h[2]};
+  const std::array<double, 4> weights = {w[0], (w[0] + 2 * w[1]) / 3, (2 * w[1] + w[2]) / 3, w[2]};
+  const std::array<double, 4> axial = {t0 * w[0], (t1 * w[0] + 2 * t0 * w[1]) / 3, (2 * t1 * w[1] + t0 * w[2]) / 3,
+                                       t1 * w[2]};
+  std::vector<Vec3> points(4);
+  for (size_t k = 0; k < 4; ++k) points[k] = (elevated[k] + axis(a) * axial[k]) / weights[k];
+  return BSplineCurve(3, {0, 0, 0, 0, 1, 1, 1, 1}, std::move(points),
+                      std::vector<double>(weights.begin(), weights.end()));
+}
+
+/// Fillet a between its far end and the oblique trim: ruled, degree 3 × 1.
+BSplineSurface filletSurface(int a) {
+  const auto &s = kObliqueSetback[size_t(a)];
+  const BSplineCurve far = filletSection(a, -kLength, -kLength), trim = filletSection(a, -s[0], -s[1]);
+  std::vector<Vec3> net;
+  std::vector<double> weights;
+  for (size_t i = 0; i < 4; ++i) {
+    net.push_back(far.controlPoints()[i]);
+    net.push_back(trim.controlPoints()[i]);
+    weights.push_back(far.weights()[i]);
+    weights.push_back(trim.weights()[i]);
+  }
+  return BSplineSurface(3, 1, {0, 0, 0, 0, 1, 1, 1, 1}, {0, 0, 1, 1}, 4, 2, std::move(net), std::move(weights));
+}
+
+} // namespace
+
+BuiltinData setbackExternalMasters() {
+  BuiltinData data;
+  NetworkDescription &net = data.network;
+  net.name = "setback-external-masters";
+  std::array<int, 3> trim{}, setback{};
+  for (int a = 0; a < 3; ++a) {
+    const auto &s = kObliqueSetback[size_t(a)];
+    net.surfaces.push_back(filletSurface(a));
+    trim[size_t(a)] = int(net.curves.size());
+    net.curves.push_back(filletSection(a, -s[0], -s[1]));
+    net.edges.push_back({trim[size_t(a)], -1, false, a});
+  }
+  // Setback curve in plane b between fillet c's trim end on it (θ = π/2)
+  // and fillet a's (θ = 0), leaving and arriving along the fillets' axes so
+  // that the blend's corners are tangent to the cylinders (as setback.cpp).
+  for (int a = 0; a < 3; ++a) {
+    const int b = (a + 1) % 3, c = (a + 2) % 3;
+    const Vec3 ea = axis(a), ec = axis(c);
+    const double sc = kObliqueSetback[size_t(c)][1], sa = kObliqueSetback[size_t(a)][0];
+    const Vec3 w = filletPoint(c, -sc, std::numbers::pi / 2), v = filletPoint(a, -sa, 0);
+    const double along = sc - kRadius[size_t(a)], across = sa - kRadius[size_t(c)];
+    setback[size_t(b)] = int(net.curves.size());
+    net.curves.push_back(BSplineCurve::bezier({w, w + ec * (kHandle * along), v + ea * (kHandle * across), v}));
+  }
+  FaceDescription blend;
+  blend.name = "vertex-blend";
+  for (int a = 0; a < 3; ++a) {
+    blend.sides.push_back({trim[size_t(a)], 0, 1});
+    blend.sides.push_back({setback[size_t((a + 2) % 3)], 0, 1});
+  }
+  net.faces.push_back(blend);
+  // Six corners: each trim end, where one setback curve ends.
+  for (int a = 0; a < 3; ++a)
+    for (int end = 0; end < 2; ++end)
+      data.facts.push_back(
+          {filletPoint(a, -kObliqueSetback[size_t(a)][size_t(end)], end * std::numbers::pi / 2), 2, 2});
+  return data;
+}
+
+// ---- end of setback-external-masters ----------------------------------------
+
 } // namespace builtin_detail
 } // namespace v1
 } // namespace curvenet

@@ -145,6 +145,27 @@ Result<BSplineCurve> toCurve(const curvenet_curve &c, int index) {
   return curve;
 }
 
+/// The network of C curves and faces (shared by the build calls).
+Result<NetworkDescription> toDescription(const curvenet_curve *curves, std::size_t curve_count,
+                                         const curvenet_face *faces, std::size_t face_count) {
+  NetworkDescription description;
+  description.name = "network";
+  for (std::size_t c = 0; c < curve_count; ++c) {
+    Result<BSplineCurve> curve = toCurve(curves[c], static_cast<int>(c));
+    if (!curve) return curve.status();
+    description.curves.push_back(std::move(curve).value());
+  }
+  for (std::size_t f = 0; f < face_count; ++f) {
+    if (faces[f].side_count && !faces[f].sides)
+      return Status{StatusCode::InvalidArgument, {}, "face " + std::to_string(f), "sides are NULL"};
+    FaceDescription face;
+    for (std::size_t k = 0; k < faces[f].side_count; ++k)
+      face.sides.push_back({faces[f].sides[k].curve, faces[f].sides[k].from, faces[f].sides[k].to});
+    description.faces.push_back(std::move(face));
+  }
+  return description;
+}
+
 curvenet_status_code adopt(Result<Model> model, curvenet_model **out, curvenet_status *status) {
   if (!model) return report(model.status(), status);
   *out = new curvenet_model{std::move(model).value()};
@@ -245,24 +266,73 @@ curvenet_status_code curvenet_model_build(const curvenet_curve *curves, size_t c
   if (face_count && !faces) return nullArgument("faces", status);
   if (!validOptions(options)) return fail(StatusCode::InvalidArgument, "options", "enum value out of range", status);
   return guarded(status, [&] {
-    NetworkDescription description;
-    description.name = "network";
-    for (std::size_t c = 0; c < curve_count; ++c) {
-      Result<BSplineCurve> curve = toCurve(curves[c], static_cast<int>(c));
-      if (!curve) return report(curve.status(), status);
-      description.curves.push_back(std::move(curve).value());
-    }
-    for (std::size_t f = 0; f < face_count; ++f) {
-      if (faces[f].side_count && !faces[f].sides)
-        return fail(StatusCode::InvalidArgument, "face " + std::to_string(f), "sides are NULL", status);
-      FaceDescription face;
-      for (std::size_t k = 0; k < faces[f].side_count; ++k)
-        face.sides.push_back({faces[f].sides[k].curve, faces[f].sides[k].from, faces[f].sides[k].to});
-      description.faces.push_back(std::move(face));
-    }
-    return adopt(Model::build(std::move(description), toOptions(options)), model, status);
+    Result<NetworkDescription> description = toDescription(curves, curve_count, faces, face_count);
+    if (!description) return report(description.status(), status);
+    return adopt(Model::build(std::move(description).value(), toOptions(options)), model, status);
   });
 }
+
+// ---- Master surfaces given from outside ([SV14] Sec. 5.1) ----------------
+
+namespace {
+
+/// A C master surface as a BSplineSurface (the facade validates the data).
+Result<BSplineSurface> toSurface(const curvenet_master_surface &m, std::size_t index) {
+  const std::string element = "surfaces[" + std::to_string(index) + "]";
+  const std::size_t count = m.count_u * m.count_v;
+  if ((!m.knots_u && m.knot_u_count) || (!m.knots_v && m.knot_v_count) || (!m.points && count))
+    return Status{StatusCode::InvalidArgument, {}, element, "knots or points are NULL"};
+  if (m.count_u > std::size_t(INT32_MAX) || m.count_v > std::size_t(INT32_MAX))
+    return Status{StatusCode::InvalidArgument, {}, element, "control net too large"};
+  std::vector<double> weights;
+  if (m.weights) weights.assign(m.weights, m.weights + count);
+  Result<BSplineSurface> surface =
+      makeSurface(m.degree_u, m.degree_v, {m.knots_u, m.knots_u + m.knot_u_count}, {m.knots_v, m.knots_v + m.knot_v_count},
+                  int(m.count_u), int(m.count_v), toPoints(m.points, count), std::move(weights));
+  if (!surface.ok()) {
+    Status status = surface.status();
+    status.element = element;
+    return status;
+  }
+  return surface;
+}
+
+} // namespace
+
+curvenet_status_code curvenet_model_build_with_masters(const curvenet_curve *curves, size_t curve_count,
+                                                       const curvenet_face *faces, size_t face_count,
+                                                       const curvenet_master_surface *surfaces, size_t surface_count,
+                                                       const curvenet_master_edge *edges, size_t edge_count,
+                                                       const curvenet_surface_options *options,
+                                                       curvenet_model **model, curvenet_status *status) {
+  if (!model) return nullArgument("model", status);
+  *model = nullptr;
+  if (curve_count && !curves) return nullArgument("curves", status);
+  if (face_count && !faces) return nullArgument("faces", status);
+  if (surface_count && !surfaces) return nullArgument("surfaces", status);
+  if (edge_count && !edges) return nullArgument("edges", status);
+  if (!validOptions(options)) return fail(StatusCode::InvalidArgument, "options", "enum value out of range", status);
+  return guarded(status, [&] {
+    Result<NetworkDescription> description = toDescription(curves, curve_count, faces, face_count);
+    if (!description) return report(description.status(), status);
+    NetworkDescription network = std::move(description).value();
+    for (std::size_t k = 0; k < surface_count; ++k) {
+      Result<BSplineSurface> surface = toSurface(surfaces[k], k);
+      if (!surface) return report(surface.status(), status);
+      network.surfaces.push_back(std::move(surface).value());
+    }
+    // Network::build checks the indices and that each curve lies on its surface.
+    for (std::size_t k = 0; k < edge_count; ++k) {
+      EdgeDescription edge;
+      edge.curve = edges[k].curve;
+      edge.masterSurface = edges[k].surface;
+      network.edges.push_back(edge);
+    }
+    return adopt(Model::build(std::move(network), toOptions(options)), model, status);
+  });
+}
+
+// ---- end of master surfaces --------------------------------------------------
 
 curvenet_status_code curvenet_model_from_loop(const curvenet_curve *curves, size_t curve_count,
                                               const curvenet_surface_options *options, curvenet_model **model,

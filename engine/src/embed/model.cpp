@@ -118,6 +118,14 @@ Result<BSplineCurve> makeCurve(int degree, std::vector<double> knots, std::vecto
   });
 }
 
+Result<BSplineSurface> makeSurface(int degreeU, int degreeV, std::vector<double> knotsU, std::vector<double> knotsV,
+                                   int countU, int countV, std::vector<Vec3> controlPoints, std::vector<double> weights) {
+  return guarded<Result<BSplineSurface>>([&]() -> Result<BSplineSurface> {
+    return BSplineSurface(degreeU, degreeV, std::move(knotsU), std::move(knotsV), countU, countV,
+                          std::move(controlPoints), std::move(weights));
+  });
+}
+
 Result<BSplineCurve> makeBezier(std::vector<Vec3> controlPoints) {
   if (controlPoints.size() < 2)
     return failure(StatusCode::InvalidInput, "curve", "a Bézier curve needs at least 2 control points");

@@ -406,23 +406,89 @@ ReferenceSurface readReference(const DocumentReader &r, const Json &j, const std
   return reference;
 }
 
+// ---- "surfaces": master surfaces given from outside ([SV14] Sec. 5.1) ----
+//
+// {"degree_u": p, "degree_v": q, "knots_u": [...], "knots_v": [...],
+//  "points": [row_0, row_1, ...], "weights": [row_0, ...]}: row i holds the
+// control points (i, 0 … n_v − 1) along v, rows along u (BSplineSurface).
+
+BSplineSurface readSurface(const DocumentReader &r, const Json &j, const std::string &path) {
+  r.expectObject(j, path);
+  r.checkKeys(j, path, {"degree_u", "degree_v", "knots_u", "knots_v", "points", "weights"});
+  const int degreeU = static_cast<int>(
+      r.integer(r.required(j, "degree_u", path), member(path, "degree_u"), 1, BSplineSurface::maxDegree));
+  const int degreeV = static_cast<int>(
+      r.integer(r.required(j, "degree_v", path), member(path, "degree_v"), 1, BSplineSurface::maxDegree));
+  std::vector<double> knotsU = r.numbers(r.required(j, "knots_u", path), member(path, "knots_u"));
+  std::vector<double> knotsV = r.numbers(r.required(j, "knots_v", path), member(path, "knots_v"));
+  // Rows of equal length: the net's shape is read off the nesting.
+  auto grid = [&](const Json &rows, const std::string &gridPath, auto &&readEntry, auto &out) {
+    r.expectArray(rows, gridPath);
+    if (rows.empty()) r.fail(gridPath, "expected at least one row");
+    std::size_t width = 0;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const std::string rowPath = indexed(gridPath, i);
+      r.expectArray(rows[i], rowPath);
+      if (i == 0) width = rows[i].size();
+      if (rows[i].size() != width)
+        r.fail(rowPath, "row has " + std::to_string(rows[i].size()) + " entries, row 0 has " + std::to_string(width) +
+                            " (the net must be rectangular)");
+      for (std::size_t k = 0; k < rows[i].size(); ++k) out.push_back(readEntry(rows[i][k], indexed(rowPath, k)));
+    }
+    return std::pair<int, int>(static_cast<int>(rows.size()), static_cast<int>(width));
+  };
+  std::vector<Vec3> points;
+  const auto [countU, countV] = grid(r.required(j, "points", path), member(path, "points"),
+                                     [&](const Json &e, const std::string &p) { return r.vec3(e, p); }, points);
+  std::vector<double> weights;
+  if (const Json *w = r.optional(j, "weights")) {
+    const auto [rows, width] = grid(*w, member(path, "weights"),
+                                    [&](const Json &e, const std::string &p) { return r.number(e, p); }, weights);
+    if (rows != countU || width != countV)
+      r.fail(member(path, "weights"), "weights are " + std::to_string(rows) + " x " + std::to_string(width) +
+                                          ", the control net " + std::to_string(countU) + " x " + std::to_string(countV));
+  }
+  // The surface's own validation knows the rules (knot counts, clamping,
+  // positive weights); it only says "surface", so add the path.
+  try {
+    return BSplineSurface(degreeU, degreeV, std::move(knotsU), std::move(knotsV), countU, countV, std::move(points),
+                          std::move(weights));
+  } catch (const InputError &e) {
+    r.fail(path, e.reason());
+  }
+}
+
+/// A master surface index into a document with `count` surfaces.
+int surfaceIndex(const DocumentReader &r, const Json &j, const std::string &path, std::size_t count) {
+  if (!j.is_number_integer()) r.fail(path, "expected an integer surface index, found " + j.dump().substr(0, 40));
+  if (!(j.is_number_unsigned() && j.get<std::uint64_t>() < count))
+    r.fail(path, "surface " + j.dump() + " does not exist (the document has " + std::to_string(count) +
+                     (count == 1 ? " surface, numbered 0)" : " surfaces, numbered from 0)"));
+  return static_cast<int>(j.get<std::int64_t>());
+}
+
+// ---- end of "surfaces" ------------------------------------------------------
+
 // "edges": per-curve settings. Unknown keys fail loudly, so a file written
 // for a later version is never read with its settings ignored.
 std::vector<EdgeDescription> readEdges(const DocumentReader &r, const Json &j, std::size_t curveCount,
-                                       std::size_t faceCount) {
+                                       std::size_t faceCount, std::size_t surfaceCount) {
   r.expectArray(j, "edges");
   std::vector<EdgeDescription> edges;
   for (std::size_t i = 0; i < j.size(); ++i) {
     const std::string path = indexed("edges", i);
     r.expectObject(j[i], path);
-    r.checkKeys(j[i], path, {"curve", "master", "connection"},
-                "per-edge settings other than \"curve\", \"master\" and \"connection\" are reserved");
+    r.checkKeys(j[i], path, {"curve", "master", "connection", "master_surface"},
+                "per-edge settings other than \"curve\", \"master\", \"master_surface\" and \"connection\" are "
+                "reserved");
     EdgeDescription edge;
     edge.curve = r.index(r.required(j[i], "curve", path), member(path, "curve"), curveCount);
     if (const Json *master = r.optional(j[i], "master"))
       edge.masterFace = r.faceIndex(*master, member(path, "master"), faceCount);
     if (const Json *connection = r.optional(j[i], "connection"))
       edge.connection = r.boolean(*connection, member(path, "connection"));
+    if (const Json *surface = r.optional(j[i], "master_surface"))
+      edge.masterSurface = surfaceIndex(r, *surface, member(path, "master_surface"), surfaceCount);
     edges.push_back(edge);
   }
   return edges;
@@ -443,6 +509,33 @@ std::string listText(const std::vector<double> &values, const std::string &eleme
   return s + "]";
 }
 
+/// A master surface as written in "surfaces" (see readSurface).
+std::string surfaceText(const BSplineSurface &m, const std::string &path) {
+  auto rows = [&](auto &&entry, const std::string &gridPath) {
+    std::string t = "[";
+    for (int i = 0; i < m.countU(); ++i) {
+      t += i ? ",\n        [" : "\n        [";
+      for (int k = 0; k < m.countV(); ++k)
+        t += (k ? ", " : "") +
+             entry(size_t(i) * size_t(m.countV()) + size_t(k), indexed(indexed(gridPath, size_t(i)), size_t(k)));
+      t += "]";
+    }
+    return t + "\n      ]";
+  };
+  std::string s = "    {\n";
+  s += "      \"degree_u\": " + std::to_string(m.degreeU()) + ", \"degree_v\": " + std::to_string(m.degreeV()) + ",\n";
+  s += "      \"knots_u\": " + listText(m.knotsU(), member(path, "knots_u")) + ",\n";
+  s += "      \"knots_v\": " + listText(m.knotsV(), member(path, "knots_v")) + ",\n";
+  s += "      \"points\": " +
+       rows([&](size_t k, const std::string &e) { return vecText(m.controlPoints()[k], e); }, member(path, "points"));
+  if (m.isRational())
+    s += ",\n      \"weights\": " +
+         rows([&](size_t k, const std::string &e) { return numberText(m.weights()[k], e); }, member(path, "weights"));
+  return s + "\n    }";
+}
+
+// ---- end of "surfaces" ------------------------------------------------------
+
 } // namespace
 
 NetworkDescription parseNetworkJson(const std::string &text, const std::string &file) {
@@ -460,7 +553,7 @@ NetworkDescription parseNetworkJson(const std::string &text, const std::string &
     r.fail("version", "unsupported version " + std::to_string(version) + " (this reader knows version " +
                           std::to_string(formatVersion) + ")");
   r.checkKeys(doc, documentElement, {"format", "version", "name", "tolerance", "curves", "faces", "reference", "edges",
-                                      "connection_curves"});
+                                      "connection_curves", "surfaces"});
 
   NetworkDescription d;
   if (const Json *name = r.optional(doc, "name")) d.name = r.string(*name, "name");
@@ -484,7 +577,13 @@ NetworkDescription parseNetworkJson(const std::string &text, const std::string &
   }
 
   if (const Json *reference = r.optional(doc, "reference")) d.reference = readReference(r, *reference, "reference");
-  if (const Json *edges = r.optional(doc, "edges")) d.edges = readEdges(r, *edges, d.curves.size(), d.faces.size());
+  if (const Json *surfaces = r.optional(doc, "surfaces")) {
+    r.expectArray(*surfaces, "surfaces");
+    for (std::size_t k = 0; k < surfaces->size(); ++k)
+      d.surfaces.push_back(readSurface(r, (*surfaces)[k], indexed("surfaces", k)));
+  }
+  if (const Json *edges = r.optional(doc, "edges"))
+    d.edges = readEdges(r, *edges, d.curves.size(), d.faces.size(), d.surfaces.size());
   if (const Json *connection = r.optional(doc, "connection_curves"))
     d.connectionCurves = r.boolean(*connection, "connection_curves");
   return d;
@@ -556,8 +655,15 @@ std::string networkToJson(const NetworkDescription &d) {
       s += "{\"curve\": " + std::to_string(d.edges[k].curve);
       if (d.edges[k].masterFace >= 0) s += ", \"master\": " + std::to_string(d.edges[k].masterFace);
       if (d.edges[k].connection) s += ", \"connection\": true";
+      if (d.edges[k].masterSurface >= 0) s += ", \"master_surface\": " + std::to_string(d.edges[k].masterSurface);
       s += "}";
     }
+    s += "\n  ]";
+  }
+  if (!d.surfaces.empty()) {
+    s += ",\n  \"surfaces\": [\n";
+    for (std::size_t k = 0; k < d.surfaces.size(); ++k)
+      s += (k ? ",\n" : "") + surfaceText(d.surfaces[k], indexed("surfaces", k));
     s += "\n  ]";
   }
   // A mesh reference is a separate input (curvenet approximate), never part of the file.

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numbers>
 #include <sstream>
@@ -275,9 +276,79 @@ std::vector<Vertex> mergeVertices(std::vector<Segment> &segments, double toleran
   return vertices;
 }
 
+// ---- Master surfaces given from outside ([SV14] Sec. 5.1) ----------------
+
+/// Curve samples per segment at which a curve is projected onto its master
+/// surface: enough that a curve leaving the surface between its control
+/// points is caught (its deviation is a polynomial of the curve's degree
+/// over each span, sampled several times per span at this count).
+constexpr int kMasterCheckSamples = 64;
+
+/// The largest distance from curve `curve`'s pieces to `master`, and where
+/// (a source-curve parameter).
+struct MasterDistance {
+  double distance = 0, parameter = 0;
+};
+
+std::string formatDistance(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", value);
+  return text;
+}
+
+MasterDistance distanceToMaster(const std::vector<Segment> &segments, int curve, const BSplineSurface &master,
+                                double tolerance) {
+  MasterDistance worst;
+  for (const Segment &seg : segments) {
+    if (seg.sourceCurve != curve) continue;
+    SurfaceProjection foot = master.closestPoint(seg.curve.point(0.0));
+    for (int j = 0; j <= kMasterCheckSamples; ++j) {
+      const double u = double(j) / kMasterCheckSamples;
+      const Vec3 p = seg.curve.point(u);
+      // From the previous foot (the samples are close); a warm start that
+      // lands off the surface may have stalled in a local minimum, so it is
+      // confirmed by the global search before it counts.
+      foot = master.closestPoint(p, foot.u, foot.v);
+      if (foot.distance > tolerance) {
+        const SurfaceProjection global = master.closestPoint(p);
+        if (global.distance < foot.distance) foot = global;
+      }
+      if (foot.distance > worst.distance)
+        worst = {foot.distance, seg.sourceFrom + (seg.sourceTo - seg.sourceFrom) * u};
+    }
+  }
+  return worst;
+}
+
+/// Edge `k` names a master surface: it must exist, not come with a master
+/// face, and the curve must lie on it within the tolerance.
+void applyMasterSurface(const NetworkDescription &description, size_t k, std::vector<Segment> &segments,
+                        double tolerance, const Failure &fail) {
+  const EdgeDescription &edge = description.edges[k];
+  const std::string element = "edges[" + std::to_string(k) + "]";
+  const std::string name = "master surface " + std::to_string(edge.masterSurface);
+  if (edge.masterSurface >= static_cast<int>(description.surfaces.size()))
+    throw fail(element, name + " does not exist (the document has " + std::to_string(description.surfaces.size()) +
+                            " surfaces)");
+  if (edge.masterFace >= 0) throw fail(element, "names both a master face and a master surface");
+  const MasterDistance d = distanceToMaster(segments, edge.curve, description.surfaces[size_t(edge.masterSurface)],
+                                            tolerance);
+  if (d.distance > tolerance)
+    throw fail(element, "curve " + std::to_string(edge.curve) + " is " + formatDistance(d.distance) + " from " + name +
+                            " at curve parameter " + formatDistance(d.parameter) + " (tolerance " +
+                            formatDistance(tolerance) + ", " + formatDistance(description.tolerance) +
+                            " of the diagonal)");
+  for (Segment &seg : segments)
+    if (seg.sourceCurve == edge.curve) seg.masterSurface = edge.masterSurface;
+}
+
+// ---- end of master surfaces --------------------------------------------------
+
 /// The per-curve settings of `edges`: connection curves, and explicit
-/// masters ([SV14] Sec. 5.1), each bordering every piece of its curve.
-void applyEdgeSettings(const NetworkDescription &description, std::vector<Segment> &segments, const Failure &fail) {
+/// masters ([SV14] Sec. 5.1): a face bordering every piece of its curve, or
+/// a surface given from outside that the curve lies on.
+void applyEdgeSettings(const NetworkDescription &description, std::vector<Segment> &segments, double tolerance,
+                       const Failure &fail) {
   const auto &curves = description.curves;
   std::vector<bool> seen(curves.size(), false);
   for (size_t k = 0; k < description.edges.size(); ++k) {
@@ -290,6 +361,7 @@ void applyEdgeSettings(const NetworkDescription &description, std::vector<Segmen
     if (edge.connection)
       for (Segment &seg : segments)
         if (seg.sourceCurve == edge.curve) seg.connection = true;
+    if (edge.masterSurface >= 0) applyMasterSurface(description, k, segments, tolerance, fail);
     if (edge.masterFace < 0) continue;
     if (edge.masterFace >= static_cast<int>(description.faces.size()))
       throw fail(element, "master face " + std::to_string(edge.masterFace) + " does not exist");
@@ -401,7 +473,7 @@ Network Network::build(const NetworkDescription &input, const std::string &file)
   const Breakpoints breakpoints = collectBreakpoints(description, fail);
   net.faces_ = FaceBuilder(description, breakpoints, fail).build(net.segments_);
   net.vertices_ = mergeVertices(net.segments_, tolerance, fail);
-  applyEdgeSettings(description, net.segments_, fail);
+  applyEdgeSettings(description, net.segments_, tolerance, fail);
   closeLoops(net.faces_, net.segments_, tolerance, fail);
   classifyVertices(net.vertices_, net.segments_);
   return net;

@@ -277,6 +277,31 @@ bool needsOriginShift(const Network &network) {
   return norm(network.bounds().center()) > 4 * network.diagonal() && !meshReference;
 }
 
+// ---- Master surfaces given from outside ([SV14] Sec. 5.1) ----------------
+
+/// The master surface segment `seg` names (nullptr for none).
+const BSplineSurface *masterSurfaceOf(const Network &network, const Segment &seg) {
+  return seg.masterSurface < 0 ? nullptr : &network.description().surfaces[size_t(seg.masterSurface)];
+}
+
+/// The master surface of the first segment at vertex v that names one
+/// (nullptr for none): a vertex at the end of a master edge takes that
+/// surface's curvature, so that the fences of its other edges meet the
+/// master's (N' = −S(P') with the master's shape operator S).
+const BSplineSurface *vertexMasterSurface(const Network &network, int v) {
+  for (int e : network.vertices()[size_t(v)].segments)
+    if (const BSplineSurface *master = masterSurfaceOf(network, network.segments()[size_t(e)])) return master;
+  return nullptr;
+}
+
+/// The master's frame at its closest point to p.
+SurfaceFrame masterFrame(const BSplineSurface &master, const Vec3 &p) {
+  const SurfaceProjection foot = master.closestPoint(p);
+  return master.frame(foot.u, foot.v);
+}
+
+// ---- end of master surfaces --------------------------------------------------
+
 /// Vertex frames and curvatures of the listed vertices.
 void buildVertexData(Impl &impl, std::span<const int> vertices) {
   const Network &network = impl.network;
@@ -290,10 +315,15 @@ void buildVertexData(Impl &impl, std::span<const int> vertices) {
     // fences: every patch corner reproduces that plane, so a fence that met a
     // different normal there would break G¹ (see NormalFence::fromNormalField).
     impl.fitted[v] = fitVertexCurvature(network, impl.frames, v);
-    impl.curvatures[v] = referenceCurvature ? vertexCurvatureFromReference(
-                                                  network.reference()->closest(network.vertices()[v].position),
-                                                  impl.fitted[v].normal, impl.fitted[v].xAxis)
-                                            : impl.fitted[v];
+    const Vec3 &position = network.vertices()[v].position;
+    if (const BSplineSurface *master = vertexMasterSurface(network, v))
+      impl.curvatures[v] = vertexCurvatureFromReference(masterFrame(*master, position), impl.fitted[v].normal,
+                                                        impl.fitted[v].xAxis);
+    else if (referenceCurvature)
+      impl.curvatures[v] = vertexCurvatureFromReference(network.reference()->closest(position), impl.fitted[v].normal,
+                                                        impl.fitted[v].xAxis);
+    else
+      impl.curvatures[v] = impl.fitted[v];
   }
 }
 
@@ -321,10 +351,15 @@ std::vector<char> keptG1Faces(const Network &network, const SurfaceOptions &opti
 /// The normal fence of segment e (shared by both faces of the edge).
 std::shared_ptr<const NormalFence> buildFence(const Impl &impl, int e) {
   const Segment &seg = impl.network.segments()[e];
+  const Vec3 n0 = impl.frames[seg.start].normal, n1 = impl.frames[seg.end].normal;
+  // A master surface's normal at the closest point of each fence sample:
+  // every face along the edge then shares the master's tangent planes.
+  if (const BSplineSurface *master = masterSurfaceOf(impl.network, seg))
+    return std::make_shared<const NormalFence>(NormalFence::fromNormalField(
+        seg.curve, [master](const Vec3 &p) { return masterFrame(*master, p).normal; }, n0, n1));
   // An edge of a kept G¹ face keeps that patch's fence: the G² face across
   // it then shares its tangent planes along the whole edge.
   if (keptG1(impl, seg.faces[0]) || keptG1(impl, seg.faces[1])) return SurfaceAccess::sharedFence(*impl.g1, e);
-  const Vec3 n0 = impl.frames[seg.start].normal, n1 = impl.frames[seg.end].normal;
   if (impl.referenceFences) {
     // The reference surface's normal, turned to the side the faces' loops give.
     const ReferenceSurface &reference = *impl.network.reference();
@@ -349,6 +384,7 @@ std::shared_ptr<const NormalFence> buildFence(const Impl &impl, int e) {
 /// True when gregory-g2 measures segment `seg`'s transversal curvature on the
 /// G¹ patches (named master, connection curve, master–slave, averaging).
 bool measuredOnG1(const Segment &seg, EdgeCurvature source) {
+  if (seg.masterSurface >= 0) return false; // the master surface's own curvature
   return seg.masterFace >= 0 || seg.connection || source == EdgeCurvature::MasterSlave ||
          source == EdgeCurvature::Averaging;
 }
@@ -368,7 +404,8 @@ std::shared_ptr<const TransversalCurvature> buildEdgeCurvature(const Impl &impl,
   // An edge between a kept G¹ face and a G² face takes the kept patch's
   // curvature, as if it named that face.
   const int kept = keptSide(impl, seg);
-  const bool namedMaster = seg.masterFace >= 0 || seg.connection || kept >= 0;
+  const BSplineSurface *masterSurface = masterSurfaceOf(network, seg);
+  const bool namedMaster = seg.masterFace >= 0 || seg.connection || kept >= 0 || masterSurface;
   const int masterSide = seg.masterFace >= 0                                   ? (seg.faces[0] == seg.masterFace ? 0 : 1)
                          : kept >= 0                                           ? kept
                          : seg.connection                                      ? -1
@@ -399,7 +436,13 @@ std::shared_ptr<const TransversalCurvature> buildEdgeCurvature(const Impl &impl,
     const Vec3 t = normalized(c[1]), d = cross(n, t);
     const double k0 = dot(c[2], n) / dot(c[1], c[1]);
     double kappa = 0;
-    if (!namedMaster && options.edgeCurvature == EdgeCurvature::Reference) {
+    if (masterSurface) {
+      // The master's second fundamental form in the fence direction, at
+      // the closest point (ends included: the end vertices carry the
+      // master's tensor too, so the two agree there).
+      const SurfaceFrame frame = masterFrame(*masterSurface, c[0]);
+      kappa = (dot(frame.normal, n) < 0 ? -1.0 : 1.0) * frame.normalCurvature(d);
+    } else if (!namedMaster && options.edgeCurvature == EdgeCurvature::Reference) {
       const SurfaceFrame frame = network.reference()->closest(c[0]);
       kappa = (dot(frame.normal, n) < 0 ? -1.0 : 1.0) * frame.normalCurvature(d);
     } else if (j == 0 || j == kCurvatureIntervals) {
@@ -591,9 +634,18 @@ bool sameCurve(const BSplineCurve &a, const BSplineCurve &b) {
          a.weights() == b.weights();
 }
 
-/// Same vertices, segments, faces and their incidences: what an edit of
-/// curve geometry keeps (see Surface::rebuildAfterEdit).
+bool sameMasterSurfaces(const std::vector<BSplineSurface> &a, const std::vector<BSplineSurface> &b) {
+  return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const BSplineSurface &x, const BSplineSurface &y) {
+    return x.degreeU() == y.degreeU() && x.degreeV() == y.degreeV() && x.knotsU() == y.knotsU() &&
+           x.knotsV() == y.knotsV() && x.controlPoints() == y.controlPoints() && x.weights() == y.weights();
+  });
+}
+
+/// Same vertices, segments, faces and their incidences (and master
+/// surfaces): what an edit of curve geometry keeps (see
+/// Surface::rebuildAfterEdit).
 bool sameTopology(const Network &a, const Network &b) {
+  if (!sameMasterSurfaces(a.description().surfaces, b.description().surfaces)) return false;
   if (a.vertices().size() != b.vertices().size() || a.segments().size() != b.segments().size() ||
       a.faces().size() != b.faces().size() || a.reference().has_value() != b.reference().has_value())
     return false;
@@ -602,7 +654,7 @@ bool sameTopology(const Network &a, const Network &b) {
   for (std::size_t e = 0; e < a.segments().size(); ++e) {
     const Segment &x = a.segments()[e], &y = b.segments()[e];
     if (x.start != y.start || x.end != y.end || x.faces != y.faces || x.masterFace != y.masterFace ||
-        x.connection != y.connection)
+        x.masterSurface != y.masterSurface || x.connection != y.connection)
       return false;
   }
   for (std::size_t f = 0; f < a.faces().size(); ++f) {
@@ -658,6 +710,12 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
       curve = BSplineCurve(curve.degree(), curve.knots(), std::move(points), curve.weights());
     }
     if (local.reference) local.reference->center -= centre;
+    for (BSplineSurface &master : local.surfaces) {
+      std::vector<Vec3> points = master.controlPoints();
+      for (Vec3 &p : points) p -= centre;
+      master = BSplineSurface(master.degreeU(), master.degreeV(), master.knotsU(), master.knotsV(), master.countU(),
+                              master.countV(), std::move(points), master.weights());
+    }
     Surface surface = build(Network::build(local), options);
     // The surface was made here and is not shared yet: completing it is safe.
     const auto impl = std::const_pointer_cast<Impl>(surface.impl_);
