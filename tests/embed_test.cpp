@@ -131,6 +131,35 @@ TEST(Embed, JetBatchesAgreeWithPointwiseEvaluationOnEveryBuiltin) {
   }
 }
 
+// A side whose ribbon table cannot reach its tolerances (a rational
+// quadratic with middle weight 1e3: its parameter speed varies 10⁶-fold, and
+// the ribbon's derivatives grow too fast near its ends) stops the batched
+// evaluation that builds the table as an input error naming the face as
+// well as the side, through Model::evaluate and Model::tessellate alike.
+TEST(Embed, ARibbonTableThatCannotBeBuiltNamesTheFaceThroughTheModel) {
+  NetworkDescription d;
+  d.name = "steep";
+  d.curves.push_back(BSplineCurve(2, {0, 0, 0, 1, 1, 1}, {{0, 0, 0}, {0.5, -0.2, 0.3}, {1, 0, 0}}, {1, 1e3, 1}));
+  d.curves.push_back(BSplineCurve(1, {0, 0, 1, 1}, {{1, 0, 0}, {0.5, 1, 0}}));
+  d.curves.push_back(BSplineCurve(1, {0, 0, 1, 1}, {{0.5, 1, 0}, {0, 0, 0}}));
+  d.faces.push_back({{{0, 0, 1}, {1, 0, 1}, {2, 0, 1}}});
+  auto model = Model::build(d, {.scheme = Scheme::GregoryG2});
+  ASSERT_TRUE(model.ok()) << model.status().toString();
+  const std::vector<Vec2> uv(64, Vec2{0.1, 0.1});
+  std::vector<SurfacePoint> out(uv.size());
+  // The input's, not the engine's: derivatives and values agree.
+  const Status evaluated = model->evaluate(0, uv, out, {.threads = 1});
+  EXPECT_EQ(evaluated.code, StatusCode::InvalidInput);
+  EXPECT_EQ(evaluated.element, "face 0 side 0") << evaluated.toString();
+  EXPECT_EQ(evaluated.message.rfind("ribbon table: ", 0), 0u) << evaluated.toString();
+  EXPECT_NE(evaluated.message.find("grow too fast"), std::string::npos) << evaluated.toString();
+  auto again = Model::build(d, {.scheme = Scheme::GregoryG2});
+  ASSERT_TRUE(again.ok());
+  const Result<MeshSize> mesh = again->tessellate({.resolution = 40, .threads = 1});
+  ASSERT_FALSE(mesh.ok());
+  EXPECT_EQ(mesh.status().element, "face 0 side 0") << mesh.status().toString();
+}
+
 TEST(Embed, BatchOutputDoesNotDependOnThreads) {
   auto model = Model::load("builtin:pentagon", {.scheme = Scheme::GregoryG2});
   ASSERT_TRUE(model.ok()) << model.status().toString();
