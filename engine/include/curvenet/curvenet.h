@@ -6,8 +6,10 @@
  * strings, no C++ in this header.
  *
  * Lifecycle. A curvenet_model is a curve network with the surfaces over its
- * faces. Create it with curvenet_model_from_loop, curvenet_model_build or
- * curvenet_model_load; release it with curvenet_model_destroy.
+ * faces. Create it with curvenet_model_from_loop, curvenet_model_build,
+ * curvenet_model_build_network (faces with holes, a reference surface,
+ * master edges) or curvenet_model_load; release it with
+ * curvenet_model_destroy.
  *
  * Errors. Every call that can fail returns a curvenet_status_code
  * (CURVENET_OK = 0 on success) and, when `status` is not NULL, fills it with
