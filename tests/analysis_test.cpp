@@ -18,6 +18,7 @@
 #include "analysis/vertex_curvature.hpp"
 #include "curvenet/analysis.hpp"
 #include "curvenet/builtins.hpp"
+#include "curvenet/curvenet.hpp"
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
 #include "curvenet/network.hpp"
@@ -422,4 +423,35 @@ TEST(BoundedVertexFit, PrincipalCurvaturesNeverExceedTheCurvesBound) {
   // The trials do exercise the regularization, and the plain fit does fail.
   EXPECT_GT(plainOutside, 100);
   EXPECT_GE(regularized, plainOutside);
+}
+
+// A curve whose derivatives overflow at a vertex (a rational quadratic with
+// a first weight of 1e-160: |c'|² is infinite there) has no normal
+// curvature; the refusal names the vertex and the curve, not the position of
+// a number in the curvature fit's list.
+TEST(Analysis, ACurveEndWithoutFiniteCurvatureIsRefusedNamingTheVertexAndTheCurve) {
+  NetworkDescription d;
+  d.name = "overflow";
+  d.curves.push_back(BSplineCurve(2, {0, 0, 0, 1, 1, 1}, {{0, 0, 0}, {0.5, -0.2, 0.3}, {1, 0, 0}}, {1e-160, 1, 1}));
+  d.curves.push_back(BSplineCurve(1, {0, 0, 1, 1}, {{1, 0, 0}, {0.5, 1, 0}}));
+  d.curves.push_back(BSplineCurve(1, {0, 0, 1, 1}, {{0.5, 1, 0}, {0, 0, 0}}));
+  d.faces.push_back({{{0, 0, 1}, {1, 0, 1}, {2, 0, 1}}});
+  const Network network = Network::build(d);
+  int vertex = -1;
+  for (const Segment &seg : network.segments())
+    if (seg.sourceCurve == 0) vertex = seg.start;
+  const std::string element = "vertex " + std::to_string(vertex);
+  try {
+    analyzeNetwork(network);
+    ADD_FAILURE() << "the overflowing curve end was analysed";
+  } catch (const InputError &e) {
+    EXPECT_EQ(e.element(), element);
+    EXPECT_NE(e.reason().find("curve 0 has no finite normal curvature"), std::string::npos) << e.reason();
+  }
+  for (Scheme scheme : {Scheme::GregoryG1, Scheme::GregoryG2}) {
+    const auto model = Model::build(d, {scheme});
+    ASSERT_FALSE(model.ok()) << schemeName(scheme);
+    EXPECT_EQ(model.status().element, element) << model.status().toString();
+    EXPECT_NE(model.status().message.find("curve 0"), std::string::npos) << model.status().toString();
+  }
 }

@@ -96,15 +96,14 @@ TEST(Embed, JetBatchesAgreeWithPointwiseEvaluationOnEveryBuiltin) {
                                             {.scheme = Scheme::GregoryG2, .sweepline = Sweepline::Hermite},
                                             {.scheme = Scheme::GregoryG2, .sweepline = Sweepline::QuinticHermite},
                                             {.scheme = Scheme::CompositeRibbon}};
+  // The curves as given and as repaired: the repair keeps a Bézier curve
+  // one polynomial (it raises the degree instead of inserting a knot inside
+  // the side), so the surface has no derivative kink for the two paths to
+  // take from different sides.
   for (const BuiltinInfo &info : builtinNetworks()) {
     const NetworkDescription description = builtinNetwork(info.name);
-    for (SurfaceOptions options : schemes) {
-      // The curves as given: on the cubic Bézier built-ins the gregory-g2
-      // curvature tweak makes the tables' derivatives disagree with the
-      // pointwise ones by up to 1e-5 (an open bug of the repaired curves,
-      // docs/surfaces.md "Vertex repair on the way"), which this test must not hide
-      // behind a looser bound.
-      options.curves = CurveHandling::Kept;
+    for (SurfaceOptions options : schemes) for (CurveHandling curves : {CurveHandling::Kept, CurveHandling::Repaired}) {
+      options.curves = curves;
       auto model = Model::build(description, options);
       if (!model.ok()) continue; // a scheme the network does not take (e.g. a G² master face)
       BoundingBox box;
@@ -123,12 +122,42 @@ TEST(Embed, JetBatchesAgreeWithPointwiseEvaluationOnEveryBuiltin) {
       // their slopes to 1e-10 (ribbon_table.hpp; measured here: derivatives
       // ≤ 3e-12 of their scale, normals ≤ 3e-11 / sin θ).
       const std::string what = info.name + " " + schemeName(options.scheme) + " sweep " +
-                               std::to_string(static_cast<int>(options.sweepline));
+                               std::to_string(static_cast<int>(options.sweepline)) + " curves " +
+                               curveHandlingName(curves);
       EXPECT_LE(worst.point, 1e-12) << what;
       EXPECT_LE(worst.derivatives, 1e-11) << what;
       EXPECT_LE(worst.normal, 1e-10) << what;
     }
   }
+}
+
+// A side whose ribbon table cannot reach its tolerances (a rational
+// quadratic with middle weight 1e4: its parameter speed is far from uniform,
+// and the ribbon's derivatives grow too fast near its ends) stops the batched
+// evaluation that builds the table as an input error naming the face as
+// well as the side, through Model::evaluate and Model::tessellate alike.
+TEST(Embed, ARibbonTableThatCannotBeBuiltNamesTheFaceThroughTheModel) {
+  NetworkDescription d;
+  d.name = "steep";
+  d.curves.push_back(BSplineCurve(2, {0, 0, 0, 1, 1, 1}, {{0, 0, 0}, {0.5, -0.2, 0.3}, {1, 0, 0}}, {1, 1e4, 1}));
+  d.curves.push_back(BSplineCurve(1, {0, 0, 1, 1}, {{1, 0, 0}, {0.5, 1, 0}}));
+  d.curves.push_back(BSplineCurve(1, {0, 0, 1, 1}, {{0.5, 1, 0}, {0, 0, 0}}));
+  d.faces.push_back({{{0, 0, 1}, {1, 0, 1}, {2, 0, 1}}});
+  auto model = Model::build(d, {.scheme = Scheme::GregoryG2});
+  ASSERT_TRUE(model.ok()) << model.status().toString();
+  const std::vector<Vec2> uv(64, Vec2{0.1, 0.1});
+  std::vector<SurfacePoint> out(uv.size());
+  // The input's, not the engine's: derivatives and values agree.
+  const Status evaluated = model->evaluate(0, uv, out, {.threads = 1});
+  EXPECT_EQ(evaluated.code, StatusCode::InvalidInput);
+  EXPECT_EQ(evaluated.element, "face 0 side 0") << evaluated.toString();
+  EXPECT_EQ(evaluated.message.rfind("ribbon table: ", 0), 0u) << evaluated.toString();
+  EXPECT_NE(evaluated.message.find("grow too fast"), std::string::npos) << evaluated.toString();
+  auto again = Model::build(d, {.scheme = Scheme::GregoryG2});
+  ASSERT_TRUE(again.ok());
+  const Result<MeshSize> mesh = again->tessellate({.resolution = 40, .threads = 1});
+  ASSERT_FALSE(mesh.ok());
+  EXPECT_EQ(mesh.status().element, "face 0 side 0") << mesh.status().toString();
 }
 
 TEST(Embed, BatchOutputDoesNotDependOnThreads) {

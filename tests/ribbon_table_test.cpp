@@ -108,6 +108,14 @@ TEST(RibbonTable, ATableThatCannotBeBuiltForAFaceNamesTheFace) {
     EXPECT_NE(message.find("disagree"), std::string::npos) << message;
   }
   EXPECT_THROW(namingFace(7, [] { throw InputError("", "curve 1", "bad"); }), InputError);
+  // A side's input error (a table the curves keep from its tolerances) gets the face in its element.
+  try {
+    namingFace(7, [] { throw InputError("", "side 2", "ribbon table: too steep"); });
+    ADD_FAILURE() << "nothing thrown";
+  } catch (const InputError &e) {
+    EXPECT_EQ(e.element(), "face 7 side 2");
+    EXPECT_EQ(e.reason(), "ribbon table: too steep");
+  }
   EXPECT_EQ(namingFace(7, [] { return 42; }), 42);
 }
 
@@ -167,6 +175,86 @@ TEST(RibbonTable, RibbonsTakeTheSideOfEveryBreakpointTheyAreAskedFrom) {
     }
   }
   EXPECT_GT(checked, 100u);
+}
+
+// Curves fitted to sketches carry knots within 2e-6 of a curve end: the
+// breakpoint interval there is ~1e-6 wide, where the difference of two
+// ribbon values loses the digits a slope needs. Such a side is tabulated to
+// the same tolerances as any other (and the table builder's strict check,
+// which stops on any interval that cannot reach them, lets it through).
+TEST(RibbonTable, ABreakpointIntervalOneMillionthWideMeetsTheTolerances) {
+  const double bump = 0.2;
+  auto bezier = [&](Vec3 a, Vec3 b) {
+    const Vec3 lift{0, 0, bump};
+    return std::vector<Vec3>{a, a + (b - a) / 3.0 + lift, b + (a - b) / 3.0 + lift, b};
+  };
+  const Vec3 corner[4] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  NetworkDescription d;
+  d.name = "near-end knot";
+  for (int k = 0; k < 4; ++k) {
+    const std::vector<Vec3> b = bezier(corner[k], corner[(k + 1) % 4]);
+    if (k > 0) {
+      d.curves.push_back(BSplineCurve(3, {0, 0, 0, 0, 1, 1, 1, 1}, b));
+      continue;
+    }
+    // Curve 0: the Bézier with the knot u = 1 − 1e-6 inserted (Boehm), as a
+    // fit leaves a knot near a curve end: the shape is smooth, the
+    // breakpoint interval [u, 1] a millionth wide.
+    const double u = 1 - 1e-6;
+    std::vector<Vec3> q{b[0]};
+    for (int i = 1; i <= 3; ++i) q.push_back(u * b[i] + (1 - u) * b[i - 1]);
+    q.push_back(b[3]);
+    d.curves.push_back(BSplineCurve(3, {0, 0, 0, 0, u, 1, 1, 1, 1}, q));
+  }
+  d.faces.push_back({{{0, 0, 1}, {1, 0, 1}, {2, 0, 1}, {3, 0, 1}}});
+  const Network network = Network::build(d);
+  for (Scheme scheme : {Scheme::GregoryG1, Scheme::GregoryG2}) {
+    const Surface surface = Surface::build(network, {.scheme = scheme, .curves = CurveHandling::Kept});
+    const Patch &patch = *SurfaceAccess::patch(surface, 0);
+    double breakInterval = 1;
+    for (int side = 0; side < 4; ++side) {
+      const std::vector<double> breaks = patch.ribbon(side).breakpoints();
+      for (std::size_t k = 0; k + 1 < breaks.size(); ++k)
+        breakInterval = std::min(breakInterval, breaks[k + 1] - breaks[k]);
+      for (double b : breaks) breakInterval = std::min({breakInterval, b > 0 ? b : 1.0, b < 1 ? 1 - b : 1.0});
+    }
+    EXPECT_LT(breakInterval, 2e-6) << "the side lost its near-end breakpoint";
+    ASSERT_EQ(patch.tables().sides.size(), 4u);
+    for (int side = 0; side < 4; ++side) {
+      EXPECT_LE(patch.tables().sides[side].valueError(), 1e-13) << schemeName(scheme) << " side " << side;
+      EXPECT_LE(patch.tables().sides[side].slopeError(), 1e-10) << schemeName(scheme) << " side " << side;
+    }
+  }
+}
+
+// Every public sketch (through the curve-graph reader) tabulates every side
+// under gregory-g2 to the tables' tolerances: the builder's strict check
+// stops on any side that cannot reach them.
+TEST(RibbonTable, EverySketchSideIsTabulatedToTheTolerancesUnderGregoryG2) {
+  const std::filesystem::path sketches = std::filesystem::path(CURVENET_SHARED_DATA_DIR) / "sketches";
+  if (!std::filesystem::is_directory(sketches)) GTEST_SKIP() << sketches << " is not there (shared data absent)";
+  std::size_t tables = 0;
+  for (const char *name : {"bathtub", "box", "doghead", "dress", "ellipsetorus", "iron", "sewing_machine",
+                           "spherecylinder"}) {
+    const std::string path = (sketches / (std::string(name) + ".obj")).string();
+    auto model = Model::load(path, {.scheme = Scheme::GregoryG2, .curves = CurveHandling::Kept});
+    ASSERT_TRUE(model.ok()) << model.status().toString();
+    double valueError = 0, slopeError = 0;
+    for (int f = 0; f < model->faceCount(); ++f) {
+      try {
+        for (const RibbonTable &t : SurfaceAccess::patch(*model->surface(f), f)->tables().sides) {
+          valueError = std::max(valueError, t.valueError());
+          slopeError = std::max(slopeError, t.slopeError());
+          ++tables;
+        }
+      } catch (const InternalError &e) {
+        ADD_FAILURE() << name << " face " << f << ": " << e.what();
+      }
+    }
+    EXPECT_LE(valueError, 1e-13) << name;
+    EXPECT_LE(slopeError, 1e-10) << name;
+  }
+  EXPECT_GT(tables, 800u);
 }
 
 // One test per scheme, so that the suite's parallel runner (and the slow

@@ -3,7 +3,8 @@
 // degrees, NaN and infinite numbers, NULL pointers where the header allows
 // them and where it does not, indices out of range, buffers smaller than the
 // mesh. The bytes pick how the model is made (a small built-in, one loop of
-// curves, or a network of faces, curves partly arbitrary), then up to eight
+// curves, or a network of faces, curves partly arbitrary, with or without
+// holes, edge settings and a reference surface), then up to eight
 // calls on it. The header's promises are what is checked after every call:
 //   * the returned code is one of curvenet_status_code, never
 //     CURVENET_INTERNAL, and equals status.code; the element and message are
@@ -184,10 +185,46 @@ curvenet_model *makeModel(FuzzedDataProvider &in, std::vector<CurveData> &curves
       }
       faces.push_back({face.empty() && in.ConsumeBool() ? nullptr : face.data(), face.size()});
     }
-    checked("model_build",
-            curvenet_model_build(views.empty() && in.ConsumeBool() ? nullptr : views.data(), views.size(),
-                                 faces.data(), faces.size(), chosen, &model, &status),
-            &status);
+    if (!in.ConsumeBool()) {
+      checked("model_build",
+              curvenet_model_build(views.empty() && in.ConsumeBool() ? nullptr : views.data(), views.size(),
+                                   faces.data(), faces.size(), chosen, &model, &status),
+              &status);
+      break;
+    }
+    // The same network with what only curvenet_model_build_network says:
+    // holes (another face's loop, or a NULL array), names, edge settings with
+    // any indices, a reference surface of any kind and size, any tolerance.
+    std::vector<curvenet_loop> holes;
+    for (const curvenet_face &f : faces) holes.push_back({f.sides, f.side_count});
+    std::vector<curvenet_network_face> full;
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      // One hole (the next face's loop), two (refused: at most one), or a
+      // NULL array with a hole claimed.
+      const std::size_t holeCount = in.ConsumeBool() ? (holes.size() >= 2 && in.ConsumeBool() ? 2 : 1) : 0;
+      const bool nullHoles = holeCount > 0 && in.ConsumeIntegralInRange(0, 7) == 0;
+      const curvenet_loop *hole = holeCount == 2 ? holes.data() : &holes[(f + 1) % holes.size()];
+      full.push_back({{faces[f].sides, faces[f].side_count}, nullHoles ? nullptr : hole, holeCount,
+                      in.ConsumeBool() ? "face" : nullptr});
+    }
+    std::vector<curvenet_edge> edges;
+    for (int k = in.ConsumeIntegralInRange(0, 3); k > 0; --k)
+      edges.push_back({in.ConsumeIntegralInRange(-1, static_cast<int>(curves.size())),
+                       in.ConsumeIntegralInRange(-2, static_cast<int>(faces.size())), in.ConsumeIntegralInRange(0, 2)});
+    curvenet_network network;
+    curvenet_network_init(&network);
+    network.curves = views.data();
+    network.curve_count = views.size();
+    network.faces = full.data();
+    network.face_count = full.size();
+    network.edges = edges.empty() && in.ConsumeBool() ? nullptr : edges.data();
+    network.edge_count = edges.size();
+    const int kind = in.ConsumeIntegralInRange(-1, 4); // raw bits, as a C caller may store any int
+    std::memcpy(&network.reference.kind, &kind, sizeof kind);
+    for (int i = 0; i < 3; ++i) network.reference.center[i] = number(in), network.reference.size[i] = number(in);
+    if (in.ConsumeBool()) network.tolerance = number(in);
+    network.connection_curves = in.ConsumeIntegralInRange(0, 2);
+    checked("model_build_network", curvenet_model_build_network(&network, chosen, &model, &status), &status);
     break;
   }
   }

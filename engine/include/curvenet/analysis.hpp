@@ -199,8 +199,12 @@ NetworkAnalysis analyzeNetwork(const Network &network, const AnalysisOptions &op
 // beyond the vertex is split until the moved point's basis function vanishes
 // to third order at every other vertex on the curve — so tweaking one end
 // never disturbs position, tangent or curvature at another vertex, and both
-// ends of a short curve are tweaked independently. Degree-1 curves have no
-// curvature to tweak: InputError.
+// ends of a short curve are tweaked independently. A Bézier curve (no
+// interior knot) is first raised to degree 5 instead (exactly: the same
+// curve), where the moved point already leaves the other end alone: a knot
+// inside its span would leave the curve only C² there, a jump of the third
+// derivative that gregory-g2's ribbons carry into the surface's first
+// derivatives. Degree-1 curves have no curvature to tweak: InputError.
 
 struct TweakOptions {
   AnalysisOptions analysis;
@@ -253,7 +257,9 @@ TweakResult tweakNetwork(const Network &network, const TweakOptions &options = {
 //     beyond the vertex's own) is rotated about the vertex point, keeping the
 //     tangent's length. A curve passing through the vertex gets both
 //     neighbours of its vertex point turned by the same rotation (after knot
-//     insertion to multiplicity p), so it stays C¹ there.
+//     insertion to multiplicity p), so it stays C¹ there. A Bézier curve is
+//     raised to degree 4 first, where the turned point leaves the other end
+//     alone without a knot inside the span (the tweak raises it to 5).
 //  2. Curvature (G²): tweakNetwork on the result, at the vertices that fail
 //     the Euler constraint (degree-1 curves are skipped, not refused).
 // The moves are reported one per moved control point, with the length of

@@ -6,8 +6,10 @@
  * strings, no C++ in this header.
  *
  * Lifecycle. A curvenet_model is a curve network with the surfaces over its
- * faces. Create it with curvenet_model_from_loop, curvenet_model_build or
- * curvenet_model_load; release it with curvenet_model_destroy.
+ * faces. Create it with curvenet_model_from_loop, curvenet_model_build,
+ * curvenet_model_build_network (faces with holes, a reference surface,
+ * master edges) or curvenet_model_load; release it with
+ * curvenet_model_destroy.
  *
  * Errors. Every call that can fail returns a curvenet_status_code
  * (CURVENET_OK = 0 on success) and, when `status` is not NULL, fills it with
@@ -218,6 +220,79 @@ curvenet_status_code curvenet_model_build_with_masters(const curvenet_curve *cur
                                                        curvenet_model **model, curvenet_status *status);
 
 /* ---- end of master surfaces -------------------------------------------- */
+
+/* ---- Network input: holes, reference surface, edge settings ------------
+ *
+ * Everything the native format (docs/network-format.md) and the C++
+ * NetworkDescription (curvenet/network.hpp) can say about a network, for
+ * networks that curvenet_model_build cannot express: faces with a hole,
+ * face names, an analytic reference surface, per-curve settings (master
+ * faces, connection curves) and the vertex tolerance. A network built this
+ * way is the same network as the native file saying the same, and evaluates
+ * to the same bits. */
+
+/* A loop of sides in order: side k ends where side k + 1 starts. */
+typedef struct curvenet_loop {
+  const curvenet_side *sides;
+  size_t side_count;
+} curvenet_loop;
+
+/* A face: its outer loop, at most one hole (an inner loop, in either
+ * direction; Network::build joins it to the outer loop by hidden connection
+ * curves) and an optional name for reports (NULL or "" for none). */
+typedef struct curvenet_network_face {
+  curvenet_loop outer;
+  const curvenet_loop *holes;
+  size_t hole_count;
+  const char *name;
+} curvenet_network_face;
+
+/* Per-curve settings (the native format's "edges"), at most one per curve. */
+typedef struct curvenet_edge {
+  int curve;       /* index into the network's curves */
+  int master_face; /* the curve's master face (an index into the faces, as given), or -1 for none */
+  int connection;  /* non-zero: a hidden seam inside a composite face */
+} curvenet_edge;
+
+/* The analytic reference surfaces of curvenet/reference.hpp. */
+typedef enum curvenet_reference_kind {
+  CURVENET_REFERENCE_NONE = 0,
+  CURVENET_REFERENCE_ELLIPSOID = 1, /* (x/a)² + (y/b)² + (z/c)² = 1 around center; size = a, b, c */
+  CURVENET_REFERENCE_TORUS = 2,     /* ring radius size[0] > tube radius size[1] > 0, axis z */
+  CURVENET_REFERENCE_GRAPH = 3      /* z = a x² + b y², a = size[0], b = size[1], shifted by center */
+} curvenet_reference_kind;
+
+typedef struct curvenet_reference {
+  curvenet_reference_kind kind;
+  double center[3];
+  double size[3];
+} curvenet_reference;
+
+typedef struct curvenet_network {
+  const char *name; /* shown in messages; NULL for "network" */
+  const curvenet_curve *curves;
+  size_t curve_count;
+  const curvenet_network_face *faces;
+  size_t face_count;
+  const curvenet_edge *edges;
+  size_t edge_count;
+  curvenet_reference reference; /* kind CURVENET_REFERENCE_NONE: no reference surface */
+  double tolerance;             /* relative vertex tolerance (NetworkDescription::tolerance), > 0 */
+  int connection_curves;        /* non-zero: split concave loops and holes by connection curves */
+} curvenet_network;
+
+/* Fills the defaults: no name, curves, faces or edges, no reference,
+ * tolerance 1e-7, connection curves on. */
+void curvenet_network_init(curvenet_network *network);
+
+/* Builds `network` (the arrays need live only during the call). Errors name
+ * the element as the native reader does: "curve 2", "face 1 hole 0",
+ * "edge 0", "reference"; the rest as curvenet_model_build. */
+curvenet_status_code curvenet_model_build_network(const curvenet_network *network,
+                                                  const curvenet_surface_options *options, curvenet_model **model,
+                                                  curvenet_status *status);
+
+/* ---- End of network input: holes, reference surface, edge settings ---- */
 
 /* "builtin:NAME" or a network file (.json native format, .lop loop file). */
 curvenet_status_code curvenet_model_load(const char *input, const curvenet_surface_options *options,

@@ -90,7 +90,7 @@ VertexAnalysis analyzeWithFrame(const Network &network, int v, const VertexFrame
     end.omega = omega < 0 ? omega + 2 * pi : omega;
     // κ^n = c''·n / |c'|²: invariant to the segment's affine reparameterization
     // and to its direction, so the segment on [0, 1] serves.
-    end.normalCurvature = dot(d[2], n) / speed2;
+    end.normalCurvature = finiteNormalCurvature(dot(d[2], n) / speed2, v, seg.sourceCurve);
     out.ends.push_back(end);
   }
 

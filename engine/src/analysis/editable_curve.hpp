@@ -58,6 +58,33 @@ struct EditableCurve {
 
   int multiplicity(double u) const { return int(std::count(U.begin(), U.end(), u)); }
 
+  /// One polynomial (or rational) span: no knots inside the domain.
+  bool isBezier() const { return int(U.size()) == 2 * (p + 1); }
+
+  /// A Bézier curve of degree below `degree` raised to it (The NURBS Book
+  /// eq. 5.36, once per degree, in homogeneous form so that it holds for
+  /// rational curves): the same curve, with more control points. An edit
+  /// that moves one of them then needs no knot inside the span, so the curve
+  /// stays a single polynomial, smooth to every order. Curves with interior
+  /// knots are left as they are.
+  void raiseBezierDegree(int degree) {
+    if (!isBezier()) return;
+    for (; p < degree; ++p) {
+      std::vector<Vec3> qp(wp.size() + 1);
+      std::vector<double> qw(w.size() + 1);
+      qp.front() = wp.front(), qw.front() = w.front();
+      qp.back() = wp.back(), qw.back() = w.back();
+      for (int i = 1; i <= p; ++i) {
+        const double alpha = double(i) / (p + 1);
+        qp[i] = alpha * wp[i - 1] + (1 - alpha) * wp[i];
+        qw[i] = alpha * w[i - 1] + (1 - alpha) * w[i];
+      }
+      wp = std::move(qp), w = std::move(qw);
+      U.insert(U.begin(), U.front());
+      U.push_back(U.back());
+    }
+  }
+
   /// The control point whose move changes c''(t0) on the given side and
   /// nothing of lower order: Q_{k+2} right of t0, Q_{k−2} left of it, where
   /// Q_k is the control point at t0 (t0 has multiplicity ≥ p).

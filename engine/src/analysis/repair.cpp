@@ -33,6 +33,10 @@ Vec3 rotate(const Vec3 &v, const Vec3 &from, const Vec3 &to) {
   return v * c + cross(k, v) * s + k * (dot(k, v) * (1 - c));
 }
 
+/// The degree a Bézier curve is raised to before its tangents are turned
+/// (EditableCurve::raiseBezierDegree).
+constexpr int kSmoothTurnDegree = 4;
+
 /// One end tangent to turn: the vertex parameter on its source curve, the
 /// side of it the end's segment lies on, and the tangent before and after.
 struct EndTurn {
@@ -57,6 +61,12 @@ BSplineCurve turnCurve(const Network &network, int curveIndex, std::vector<EndTu
                        std::vector<RepairMove> &moves) {
   const BSplineCurve &original = network.description().curves[curveIndex];
   EditableCurve edit(original);
+  // Smoothness kept: a turned point of a cubic Bézier side reaches the far
+  // vertex's curvature, and a knot inserted to stop it would leave a jump of
+  // the third derivative inside the side (which gregory-g2's ribbons carry
+  // into the surface's first derivatives). At degree 4 the second point
+  // leaves the far end alone to second order with no knot at all.
+  edit.raiseBezierDegree(kSmoothTurnDegree);
   const double a = original.domainStart(), b = original.domainEnd();
   const std::vector<double> pinned = pinnedParameters(network, curveIndex, edit);
   for (EndTurn &turn : turns) turn.t0 = snappedToKnot(edit, turn.t0, a, b);

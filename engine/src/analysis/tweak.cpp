@@ -17,6 +17,10 @@ inline namespace v1 {
 
 namespace {
 
+/// The degree a Bézier curve is raised to before its curvatures are tweaked
+/// (EditableCurve::raiseBezierDegree).
+constexpr int kSmoothTweakDegree = 5;
+
 /// One end to repair: the vertex parameter t0 on a source curve, the side of
 /// t0 the end's segment lies on, and the curvature it must get.
 struct EndTweak {
@@ -69,6 +73,11 @@ TweakResult tweakNetwork(const Network &network, const TweakOptions &options) {
     if (original.degree() < 2)
       throw InputError("", element, "degree 1: a polyline has no curvature to tweak; raise its degree");
     EditableCurve edit(original);
+    // Smoothness kept: on a Bézier curve of degree 5 the moved (third) point
+    // leaves the far vertex alone to second order with no knot inside the
+    // span, so no third-derivative jump is added where gregory-g2's ribbons
+    // would carry it into the surface's first derivatives.
+    edit.raiseBezierDegree(kSmoothTweakDegree);
     const double a = original.domainStart(), b = original.domainEnd();
 
     // Every vertex on this curve: none of them may feel another end's move.

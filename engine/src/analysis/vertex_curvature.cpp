@@ -3,6 +3,9 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "curvenet/error.hpp"
 
 namespace curvenet {
 inline namespace v1 {
@@ -111,6 +114,15 @@ Vec3 VertexCurvature::shape(const Vec3 &v) const {
   return e1 * (tensor.k1 * dot(e1, v)) + e2 * (tensor.k2 * dot(e2, v));
 }
 
+double finiteNormalCurvature(double kappa, int vertex, int curve) {
+  if (!std::isfinite(kappa))
+    throw InputError("", "vertex " + std::to_string(vertex),
+                     "curve " + std::to_string(curve) +
+                         " has no finite normal curvature there (its derivatives overflow: check its weights and "
+                         "control points)");
+  return kappa;
+}
+
 std::vector<VertexCurvature> fitVertexCurvatures(const Network &network, const std::vector<VertexFrame> &frames) {
   std::vector<VertexCurvature> result(network.vertices().size());
   for (size_t v = 0; v < network.vertices().size(); ++v) result[v] = fitVertexCurvature(network, frames, static_cast<int>(v));
@@ -135,7 +147,7 @@ VertexCurvature fitVertexCurvature(const Network &network, const std::vector<Ver
     const auto &d = atStart ? d0 : d1;
     const Vec3 t = vertex.tangents[j];
     omegas.push_back(std::atan2(dot(t, vc.yAxis), dot(t, vc.xAxis)));
-    ks.push_back(dot(d[2], vc.normal) / dot(d[1], d[1]));
+    ks.push_back(finiteNormalCurvature(dot(d[2], vc.normal) / dot(d[1], d[1]), v, seg.sourceCurve));
   }
   // Two curves meeting smoothly (one loop of a hole, split into arcs; a
   // curve continued by another) leave in directions that agree only to the

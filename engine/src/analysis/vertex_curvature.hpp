@@ -83,6 +83,12 @@ double principalCurvatureBound(std::span<const double> ks);
 BoundedCurvatureFit fitBoundedCurvature(std::span<const double> omegas, std::span<const double> ks,
                                         const FitOptions &options);
 
+/// The normal curvature `kappa` of curve `curve`'s end at vertex `vertex`,
+/// or InputError naming both when it is not finite (a curve whose second
+/// derivative overflows there: extreme weights or control points), before a
+/// fit would refuse it naming only its position in a list.
+double finiteNormalCurvature(double kappa, int vertex, int curve);
+
 /// Fits (κ1, κ2, λ) at every vertex to the normal curvatures P''·N/|P'|² of
 /// the segment ends there, by fitBoundedCurvature (fitCurvature, which picks
 /// the n = 1, 2, 3, > 3 branch, wherever that is well conditioned). The x axis is the first outgoing tangent projected into the plane.

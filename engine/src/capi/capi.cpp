@@ -5,8 +5,10 @@
 #include "curvenet/curvenet.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <new>
+#include <optional>
 #include <type_traits>
 #include <vector>
 
@@ -145,23 +147,40 @@ Result<BSplineCurve> toCurve(const curvenet_curve &c, int index) {
   return curve;
 }
 
+/// The C curves as BSplineCurves, or the first one's error.
+Result<std::vector<BSplineCurve>> toCurves(const curvenet_curve *curves, std::size_t count) {
+  std::vector<BSplineCurve> result;
+  result.reserve(count);
+  for (std::size_t c = 0; c < count; ++c) {
+    Result<BSplineCurve> curve = toCurve(curves[c], static_cast<int>(c));
+    if (!curve) return curve.status();
+    result.push_back(std::move(curve).value());
+  }
+  return result;
+}
+
+/// A C loop of sides, or an error naming `element` when its array is NULL.
+Result<std::vector<SideDescription>> toSides(const curvenet_side *sides, std::size_t count,
+                                             const std::string &element) {
+  if (count && !sides) return Status{StatusCode::InvalidArgument, {}, element, "sides are NULL"};
+  std::vector<SideDescription> loop;
+  for (std::size_t k = 0; k < count; ++k) loop.push_back({sides[k].curve, sides[k].from, sides[k].to});
+  return loop;
+}
+
 /// The network of C curves and faces (shared by the build calls).
 Result<NetworkDescription> toDescription(const curvenet_curve *curves, std::size_t curve_count,
                                          const curvenet_face *faces, std::size_t face_count) {
   NetworkDescription description;
   description.name = "network";
-  for (std::size_t c = 0; c < curve_count; ++c) {
-    Result<BSplineCurve> curve = toCurve(curves[c], static_cast<int>(c));
-    if (!curve) return curve.status();
-    description.curves.push_back(std::move(curve).value());
-  }
+  Result<std::vector<BSplineCurve>> converted = toCurves(curves, curve_count);
+  if (!converted) return converted.status();
+  description.curves = std::move(converted).value();
   for (std::size_t f = 0; f < face_count; ++f) {
-    if (faces[f].side_count && !faces[f].sides)
-      return Status{StatusCode::InvalidArgument, {}, "face " + std::to_string(f), "sides are NULL"};
-    FaceDescription face;
-    for (std::size_t k = 0; k < faces[f].side_count; ++k)
-      face.sides.push_back({faces[f].sides[k].curve, faces[f].sides[k].from, faces[f].sides[k].to});
-    description.faces.push_back(std::move(face));
+    Result<std::vector<SideDescription>> sides =
+        toSides(faces[f].sides, faces[f].side_count, "face " + std::to_string(f));
+    if (!sides) return sides.status();
+    description.faces.push_back({std::move(sides).value()});
   }
   return description;
 }
@@ -230,6 +249,83 @@ curvenet_status_code tessellateModel(curvenet_model &model, const TessellationOp
   if (triangle_count) *triangle_count = size->triangles;
   return report({}, status);
 }
+
+// ---- Network input: holes, reference surface, edge settings -------------
+
+static_assert(CURVENET_REFERENCE_ELLIPSOID == static_cast<int>(ReferenceSurface::Kind::Ellipsoid) + 1 &&
+              CURVENET_REFERENCE_TORUS == static_cast<int>(ReferenceSurface::Kind::Torus) + 1 &&
+              CURVENET_REFERENCE_GRAPH == static_cast<int>(ReferenceSurface::Kind::Graph) + 1);
+
+/// The reference surface, held to the rules the native reader applies to
+/// its "reference" object (finite data, surfaces that are surfaces).
+Result<std::optional<ReferenceSurface>> toReference(const curvenet_reference &r) {
+  const int kind = rawValue(r.kind);
+  if (kind == CURVENET_REFERENCE_NONE) return std::optional<ReferenceSurface>();
+  const auto refuse = [](const std::string &reason) {
+    return Status{StatusCode::InvalidInput, {}, "reference", reason};
+  };
+  if (kind < CURVENET_REFERENCE_ELLIPSOID || kind > CURVENET_REFERENCE_GRAPH)
+    return Status{StatusCode::InvalidArgument, {}, "reference", "kind " + std::to_string(kind) + " is out of range"};
+  for (int i = 0; i < 3; ++i)
+    if (!std::isfinite(r.center[i]) || !std::isfinite(r.size[i])) return refuse("center and size must be finite");
+  ReferenceSurface reference;
+  reference.kind = static_cast<ReferenceSurface::Kind>(kind - 1);
+  reference.center = {r.center[0], r.center[1], r.center[2]};
+  reference.size = {r.size[0], r.size[1], r.size[2]};
+  const Vec3 &s = reference.size;
+  if (reference.kind == ReferenceSurface::Kind::Ellipsoid && !(s.x > 0 && s.y > 0 && s.z > 0))
+    return refuse("ellipsoid semi-axes must be positive");
+  if (reference.kind == ReferenceSurface::Kind::Torus && !(s.y > 0 && s.x > s.y))
+    return refuse("torus needs ring radius size[0] > tube radius size[1] > 0");
+  return std::optional<ReferenceSurface>(reference);
+}
+
+/// A face with its holes and name.
+Result<FaceDescription> toFace(const curvenet_network_face &f, std::size_t index) {
+  const std::string element = "face " + std::to_string(index);
+  if (f.hole_count && !f.holes) return Status{StatusCode::InvalidArgument, {}, element, "holes are NULL"};
+  FaceDescription face;
+  Result<std::vector<SideDescription>> outer = toSides(f.outer.sides, f.outer.side_count, element);
+  if (!outer) return outer.status();
+  face.sides = std::move(outer).value();
+  for (std::size_t h = 0; h < f.hole_count; ++h) {
+    Result<std::vector<SideDescription>> hole =
+        toSides(f.holes[h].sides, f.holes[h].side_count, element + " hole " + std::to_string(h));
+    if (!hole) return hole.status();
+    face.holes.push_back(std::move(hole).value());
+  }
+  if (f.name) face.name = f.name;
+  return face;
+}
+
+/// The whole C network as a NetworkDescription; Network::build checks the
+/// topology, the edge settings and the tolerance.
+Result<NetworkDescription> toNetwork(const curvenet_network &n) {
+  const auto null = [](const char *what) { return Status{StatusCode::InvalidArgument, {}, what, "must not be NULL"}; };
+  if (n.curve_count && !n.curves) return null("curves");
+  if (n.face_count && !n.faces) return null("faces");
+  if (n.edge_count && !n.edges) return null("edges");
+  NetworkDescription d;
+  d.name = n.name ? n.name : "network";
+  Result<std::vector<BSplineCurve>> curves = toCurves(n.curves, n.curve_count);
+  if (!curves) return curves.status();
+  d.curves = std::move(curves).value();
+  for (std::size_t f = 0; f < n.face_count; ++f) {
+    Result<FaceDescription> face = toFace(n.faces[f], f);
+    if (!face) return face.status();
+    d.faces.push_back(std::move(face).value());
+  }
+  for (std::size_t e = 0; e < n.edge_count; ++e)
+    d.edges.push_back({n.edges[e].curve, n.edges[e].master_face, n.edges[e].connection != 0});
+  Result<std::optional<ReferenceSurface>> reference = toReference(n.reference);
+  if (!reference) return reference.status();
+  d.reference = *reference;
+  d.tolerance = n.tolerance;
+  d.connectionCurves = n.connection_curves != 0;
+  return d;
+}
+
+// ---- End of network input: holes, reference surface, edge settings ------
 
 } // namespace
 
@@ -342,13 +438,9 @@ curvenet_status_code curvenet_model_from_loop(const curvenet_curve *curves, size
   if (curve_count && !curves) return nullArgument("curves", status);
   if (!validOptions(options)) return fail(StatusCode::InvalidArgument, "options", "enum value out of range", status);
   return guarded(status, [&] {
-    std::vector<BSplineCurve> loop;
-    for (std::size_t c = 0; c < curve_count; ++c) {
-      Result<BSplineCurve> curve = toCurve(curves[c], static_cast<int>(c));
-      if (!curve) return report(curve.status(), status);
-      loop.push_back(std::move(curve).value());
-    }
-    return adopt(Model::fromLoop(std::move(loop), toOptions(options)), model, status);
+    Result<std::vector<BSplineCurve>> loop = toCurves(curves, curve_count);
+    if (!loop) return report(loop.status(), status);
+    return adopt(Model::fromLoop(std::move(loop).value(), toOptions(options)), model, status);
   });
 }
 
@@ -524,5 +616,31 @@ curvenet_status_code curvenet_model_set_control_points(curvenet_model *model, in
     return report(model->model.setControlPoints(curve, p), status);
   });
 }
+
+// ---- Network input: holes, reference surface, edge settings -------------
+
+void curvenet_network_init(curvenet_network *network) {
+  if (!network) return;
+  const NetworkDescription d;
+  *network = {};
+  network->tolerance = d.tolerance;
+  network->connection_curves = d.connectionCurves ? 1 : 0;
+}
+
+curvenet_status_code curvenet_model_build_network(const curvenet_network *network,
+                                                  const curvenet_surface_options *options, curvenet_model **model,
+                                                  curvenet_status *status) {
+  if (!model) return nullArgument("model", status);
+  *model = nullptr;
+  if (!network) return nullArgument("network", status);
+  if (!validOptions(options)) return fail(StatusCode::InvalidArgument, "options", "enum value out of range", status);
+  return guarded(status, [&] {
+    Result<NetworkDescription> description = toNetwork(*network);
+    if (!description) return report(description.status(), status);
+    return adopt(Model::build(std::move(description).value(), toOptions(options)), model, status);
+  });
+}
+
+// ---- End of network input: holes, reference surface, edge settings ------
 
 } // extern "C"

@@ -17,6 +17,7 @@
 #include "curvenet/error.hpp"
 #include "curvenet/surface.hpp"
 #include "patches/patch.hpp"
+#include "plans/face_errors.hpp"
 #include "plans/plan.hpp"
 
 namespace curvenet {
@@ -900,8 +901,10 @@ void Surface::evaluatePositions(int face, std::span<const Vec2> uv, std::span<Ve
   for (std::size_t first = 0; first < uv.size(); first += kChunk) {
     const std::size_t m = std::min(kChunk, uv.size() - first);
     for (std::size_t k = 0; k < m; ++k) u[k] = uv[first + k].x, v[k] = uv[first + k].y;
-    // The kernel writes the points, the model's origin added.
-    patch.evaluatePositions(m, u, v, PositionSink::interleaved(out.data() + first, impl_->origin));
+    // The kernel writes the points, the model's origin added. The face's
+    // ribbon tables are built on its first batch: their errors name the face.
+    const PositionSink sink = PositionSink::interleaved(out.data() + first, impl_->origin);
+    namingFace(face, [&] { patch.evaluatePositions(m, u, v, sink); });
   }
 }
 
@@ -923,7 +926,7 @@ void Surface::evaluate(int face, std::span<const Vec2> uv, std::span<SurfacePoin
     // Whole vectors (Patch::evaluateJets): the last point repeated.
     const std::size_t padded = (m + 7) / 8 * 8;
     std::fill(u + m, u + padded, u[m - 1]), std::fill(v + m, v + padded, v[m - 1]);
-    patch.evaluateJets(padded, u, v, jets.data());
+    namingFace(face, [&] { patch.evaluateJets(padded, u, v, jets.data()); }); // tables built here name the face
     for (std::size_t k = 0; k < m; ++k) {
       const DualVec3 &r = jets[k];
       const Vec3 normal = cross(r.du, r.dv);

@@ -245,6 +245,8 @@ void addSideTable(PatchTables &tables, int side, int dims, std::vector<double> b
     tables.sides.emplace_back(dims, std::move(breaks), exact);
   } catch (const InternalError &e) {
     throw InternalError("side " + std::to_string(side) + ": " + e.what());
+  } catch (const InputError &e) {
+    throw InputError(e.file(), "side " + std::to_string(side), e.reason());
   }
 }
 

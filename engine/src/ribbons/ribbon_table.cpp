@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "curvenet/error.hpp"
 
@@ -16,23 +18,40 @@ namespace {
 // promise with pointwise evaluation.
 constexpr double kValueTolerance = 1e-13;
 constexpr double kSlopeTolerance = 1e-10;
-// Bisection depth below a breakpoint interval: 2⁻¹⁰ of it. Deeper would mean
-// a kink that is not a listed breakpoint; the table then keeps what it has.
+// Bisection depth below a breakpoint interval: 2⁻¹⁰ of it. An interval that
+// still misses there holds a kink that is not a listed breakpoint (the table
+// keeps what it has), or the exact functions are at fault (below).
 constexpr int kMaxDepth = 10;
+// Beyond it an interval is split further, up to kDeepestDepth, only while
+// bisection still works: its error fell by kConvergence or more from its
+// parent's (a smooth function's quintic Hermite error falls by 2⁵ … 2⁶ per
+// halving). Functions whose high derivatives grow fast near a side's end
+// need a level or two more; a derivative that disagrees with its values, or
+// rounding, does not converge and stops at kMaxDepth.
+constexpr int kDeepestDepth = 16;
+constexpr double kConvergence = 8;
 // A kink off the breakpoints leaves an interval or two at the depth limit;
-// more than this many means the exact functions' derivatives disagree with
-// their values (a defect), and building stops with an error rather than a
-// table that quietly misses its tolerance everywhere.
+// more than this many means the table cannot reach its tolerances, and
+// building stops with an error rather than a table that quietly misses them
+// (strict: whatever the size of the gap).
 constexpr std::size_t kMaxUnresolved = 8;
-// ... and a gap this large (relative to the ribbon's size) is such a defect:
-// a wrong factor or sign in a derivative misses by the derivative's own size.
-// Smaller gaps keep the table (bounded: 2^kMaxDepth intervals per breakpoint
-// interval) with its measured error. Curves fitted to sketches can carry
-// knots within 2e-6 of a curve end or of a fence knot; on those breakpoint
-// intervals, about 1e-6 wide, the tables miss the 1e-10 slope tolerance by up
-// to 5e-5 (the exact functions are consistent there: finite differences agree
-// to 1e-7), and they stay usable, to that accuracy.
-constexpr double kDefectGap = 1e-3;
+// Intervals at most this wide (those whose one-sided stencil steps are an
+// eighth of the interval, so that the slopes are known at nine evenly spaced
+// parameters) take the value difference f(b) − f(a) from those slopes by
+// Boole's rule instead of from the two values: the difference of two values
+// of size |f| carries an error of ε|f| against a difference of only h|f'|,
+// which on the narrow breakpoint intervals of sketch-fitted curves (a knot
+// within 2e-6 of a curve end or of a fence knot: h ~ 1e-6) is 1e-10 of the
+// slope, the tolerance itself, and grows as bisection narrows the interval.
+// The quadrature carries ε relative to the difference (its truncation error,
+// h·(h/8)⁶·f⁽⁷⁾/472, is far below it on such intervals), and the check at the
+// interval's middle still compares the result with the exact value there.
+constexpr double kWidestQuadratureInterval = 8 * 0x1p-13;
+// What the unresolved intervals' slopes may miss the values by (their
+// integral against the values' difference, relative to the slopes' size)
+// before the message calls it a defect: a wrong factor misses by its own
+// size, rounding by ε over the interval's relative width.
+constexpr double kDisagreement = 1e-3;
 // Where a quintic Hermite interpolant's error peaks: t³(1 − t)³ at ½, its
 // derivative at ½ − 1/√20.
 constexpr double kValueCheck = 0.5;
@@ -44,6 +63,7 @@ constexpr int kPerInterval = 12;
 struct Interval {
   double a, b;
   int depth;
+  double parentMiss = INFINITY; ///< the parent interval's error over the tolerance
 };
 
 /// Degree-5 polynomial in local t with its t-derivative.
@@ -55,6 +75,35 @@ inline void polynomial(const double *c, int stride, int dims, double t, double *
     value[d] = ((((c5 * t + c4) * t + c3) * t + c2) * t + c1) * t + c0;
     if (dt) dt[d] = (((5 * c5 * t + 4 * c4) * t + 3 * c3) * t + 2 * c2) * t + c1;
   }
+}
+
+/// x with `digits` significant digits ("3.1e-05"): std::to_string's fixed
+/// six decimals would print a small gap as 0.000000.
+std::string shortNumber(double x, int digits) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*g", digits, x);
+  return text;
+}
+
+/// f(b) − f(a) of coordinate d by composite Boole's rule over the slopes at
+/// the interval's nine evenly spaced parameters a + k h / 8: the samples'
+/// layout (kPerInterval) puts k = 0 … 4 at 0 … 4 and k = 8, 7, 6, 5 at 5 … 8.
+inline double booleDifference(const double *slopes, std::size_t dims, std::size_t d, double h) {
+  constexpr int sample[9] = {0, 1, 2, 3, 4, 8, 7, 6, 5};
+  constexpr double weight[9] = {7, 32, 12, 32, 14, 32, 12, 32, 7};
+  double sum = 0;
+  for (int k = 0; k < 9; ++k) sum += weight[k] * slopes[static_cast<std::size_t>(sample[k]) * dims + d];
+  return h / 180 * sum;
+}
+
+/// The same difference by composite Simpson's rule on the same samples: its
+/// distance from Boole's estimates the quadrature error.
+inline double simpsonDifference(const double *slopes, std::size_t dims, std::size_t d, double h) {
+  constexpr int sample[9] = {0, 1, 2, 3, 4, 8, 7, 6, 5};
+  constexpr double weight[9] = {1, 4, 2, 4, 2, 4, 2, 4, 1};
+  double sum = 0;
+  for (int k = 0; k < 9; ++k) sum += weight[k] * slopes[static_cast<std::size_t>(sample[k]) * dims + d];
+  return h / 24 * sum;
 }
 
 } // namespace
@@ -82,11 +131,14 @@ RibbonTable::RibbonTable(int dims, std::vector<double> breaks, const Exact &exac
   std::size_t unresolved = 0;
   Interval worstUnresolved{0, 0, 0};
   double worstValueGap = 0, worstSlopeGap = 0;
+  // On the worst of them: how far the slopes' integral misses the values'
+  // difference, relative to the slopes' size (a defect: of the order of 1).
+  double worstDisagreement = 0;
   const std::size_t D = static_cast<std::size_t>(dims);
   while (!pending.empty()) {
     params.resize(pending.size() * kPerInterval);
     for (std::size_t j = 0; j < pending.size(); ++j) {
-      const auto [a, b, depth] = pending[j];
+      const double a = pending[j].a, b = pending[j].b;
       const double h = b - a, step = std::min(0x1p-13, h / 8);
       double *p = params.data() + j * kPerInterval;
       // The ends one ulp inside: on a segment break the exact ribbon takes
@@ -104,7 +156,7 @@ RibbonTable::RibbonTable(int dims, std::vector<double> breaks, const Exact &exac
     }
     std::vector<Interval> next;
     for (std::size_t j = 0; j < pending.size(); ++j) {
-      const auto [a, b, depth] = pending[j];
+      const auto [a, b, depth, parentMiss] = pending[j];
       const double h = b - a, step = std::min(0x1p-13, h / 8);
       const double *v = values.data() + j * kPerInterval * D, *sl = slopes.data() + j * kPerInterval * D;
       auto at = [&](const double *base, int point, std::size_t d) { return base[static_cast<std::size_t>(point) * D + d]; };
@@ -116,8 +168,9 @@ RibbonTable::RibbonTable(int dims, std::vector<double> breaks, const Exact &exac
         double second0 = 0, second1 = 0;
         for (int k = 0; k < 5; ++k) second0 += w[k] * at(sl, k, d), second1 += w[k] * at(sl, 5 + k, d);
         second0 /= 12 * step, second1 /= -12 * step;
-        const double f0 = at(v, 0, d), f1 = at(v, 5, d), m0 = h * at(sl, 0, d), m1 = h * at(sl, 5, d);
-        const double k0 = h * h * second0, k1 = h * h * second1, df = f1 - f0;
+        const double f0 = at(v, 0, d), m0 = h * at(sl, 0, d), m1 = h * at(sl, 5, d);
+        const double k0 = h * h * second0, k1 = h * h * second1;
+        const double df = h <= kWidestQuadratureInterval ? booleDifference(sl, D, d, h) : at(v, 5, d) - f0;
         c[d] = f0;
         c[D + d] = m0;
         c[2 * D + d] = 0.5 * k0;
@@ -135,16 +188,31 @@ RibbonTable::RibbonTable(int dims, std::vector<double> breaks, const Exact &exac
         slopeError = std::max(slopeError, std::abs(slope[d] / h - at(sl, 11, d)));
       }
       const bool good = valueError <= kValueTolerance * scale && slopeError <= kSlopeTolerance * scale;
-      if (!good && depth < kMaxDepth) {
+      const double miss = std::max(valueError / (kValueTolerance * scale), slopeError / (kSlopeTolerance * scale));
+      const bool converging = depth < kDeepestDepth && miss * kConvergence < parentMiss;
+      if (!good && (depth < kMaxDepth || converging)) {
         const double mid = 0.5 * (a + b);
-        next.push_back({a, mid, depth + 1});
-        next.push_back({mid, b, depth + 1});
+        next.push_back({a, mid, depth + 1, miss});
+        next.push_back({mid, b, depth + 1, miss});
         continue;
       }
       if (!good) {
         ++unresolved;
-        if (valueError + slopeError > worstValueGap + worstSlopeGap)
+        if (valueError + slopeError > worstValueGap + worstSlopeGap) {
           worstUnresolved = pending[j], worstValueGap = valueError, worstSlopeGap = slopeError;
+          // A miss within ten times the quadrature's own error (Boole's rule
+          // against Simpson's on the same samples) is the quadrature's: a
+          // ribbon too steep for the interval, not a defect.
+          worstDisagreement = 0;
+          for (std::size_t d = 0; d < D; ++d) {
+            const double difference = at(v, 5, d) - at(v, 0, d), integral = booleDifference(sl, D, d, h);
+            const double quadratureError = std::abs(integral - simpsonDifference(sl, D, d, h));
+            double steepest = 0;
+            for (int k = 0; k < 10; ++k) steepest = std::max(steepest, std::abs(at(sl, k, d)));
+            const double gap = std::abs(integral - difference);
+            if (gap > 10 * quadratureError) worstDisagreement = std::max(worstDisagreement, gap / (h * steepest + 1e-300));
+          }
+        }
       }
       valueError_ = std::max(valueError_, valueError / scale);
       slopeError_ = std::max(slopeError_, slopeError / scale);
@@ -152,11 +220,24 @@ RibbonTable::RibbonTable(int dims, std::vector<double> breaks, const Exact &exac
     }
     pending = std::move(next);
   }
-  if (unresolved > kMaxUnresolved && std::max(worstValueGap, worstSlopeGap) > kDefectGap * scale)
-    throw InternalError("ribbon table: " + std::to_string(unresolved) + " intervals miss the tolerance at the depth limit (worst on [" +
-                        std::to_string(worstUnresolved.a) + ", " + std::to_string(worstUnresolved.b) + "]: value gap " +
-                        std::to_string(worstValueGap / scale) + ", slope gap " + std::to_string(worstSlopeGap / scale) +
-                        " of the ribbon's size); the exact derivatives disagree with the values");
+  // Strict: any more than a stray kink's intervals short of the tolerances
+  // stop the build. Derivatives that disagree with the values are a defect
+  // of the engine; a ribbon that only varies too fast for the table is the
+  // input's (its parameterization), said as such.
+  if (unresolved > kMaxUnresolved) {
+    const std::string missed =
+        "ribbon table: " + std::to_string(unresolved) + " intervals miss the tolerance at the depth limit (worst on [" +
+        shortNumber(worstUnresolved.a, 9) + ", " + shortNumber(worstUnresolved.b, 9) + "]: value gap " +
+        shortNumber(worstValueGap / scale, 3) + ", slope gap " + shortNumber(worstSlopeGap / scale, 3) +
+        " of the ribbon's size); ";
+    if (worstDisagreement > kDisagreement)
+      throw InternalError(missed + "the exact derivatives disagree with the values (their integral misses the "
+                                   "values' difference by " + shortNumber(worstDisagreement, 3) + " of the slopes' size)");
+    throw InputError({}, {},
+                     missed + "the ribbon's derivatives grow too fast there for the table (derivatives and values "
+                              "agree to " + shortNumber(worstDisagreement, 3) + "): a parameterization far from "
+                              "uniform, such as extreme weights or crowded knots");
+  }
 
   std::sort(accepted.begin(), accepted.end(), [](const Accepted &x, const Accepted &y) { return x.a < y.a; });
   for (const Accepted &x : accepted) {
