@@ -121,6 +121,33 @@ TEST(Sketch, CubeEdgesWeldIntoTheCubeWithSixOutwardFaces) {
   expectOutward(network, {0, 0, 0});
 }
 
+TEST(Sketch, CubesWithStraightOrCurvedEdgesSurfaceWithoutFoldsAtTheirCreases) {
+  // A cube's corners have no tangent plane: every face corner keeps its own,
+  // every edge is a crease. Before that, gregory-g1 folded all six faces of
+  // the straight cube (one plane forced on three perpendicular edges).
+  for (double bulge : {0.0, 0.05, 0.1}) {
+    SCOPED_TRACE(bulge);
+    const Network network = Network::build(networkFromCurveGraph(cubeEdges(bulge)).description);
+    for (Scheme scheme : {Scheme::GregoryG1, Scheme::CompositeRibbon, Scheme::GregoryG2})
+      EXPECT_EQ(folds(network, scheme), 0) << schemeName(scheme);
+    const Surface surface = Surface::build(network, {Scheme::GregoryG1});
+    EXPECT_TRUE(surface.repairMoves().empty()); // creases are left alone
+    for (int v = 0; v < static_cast<int>(network.vertices().size()); ++v) EXPECT_GT(surface.vertexResidualAngle(v), 0.3);
+    // Each face meets the corners' planes: at a corner the patch normal is
+    // the face's own normal there (its two edges' cross product), not the
+    // mean of the three faces.
+    for (int f = 0; f < static_cast<int>(network.faces().size()); ++f)
+      for (int k = 0; k < surface.domainSides(f); ++k) {
+        const Face &face = network.faces()[f];
+        const FaceSide &in = face.sides[(k + 3) % 4], &out = face.sides[k];
+        const Vec3 corner = normalized(cross(out.curve.derivatives(0.0)[1], -in.curve.derivatives(1.0)[1]));
+        const Vec2 c = surface.domainCorner(f, k), centre{0, 0};
+        const Vec3 n = surface.evaluate(f, c + (centre - c) * 1e-6).normal;
+        EXPECT_GT(dot(n, corner), std::cos(1e-3)) << face.name << " corner " << k;
+      }
+  }
+}
+
 TEST(Sketch, GreatCirclesGiveTheOctahedralNetworkWithSharedOrCrossingSamples) {
   for (bool shared : {true, false}) {
     SCOPED_TRACE(shared ? "shared points" : "crossing strokes");
