@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "curvenet/continuity.hpp"
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
 #include "curvenet/network.hpp"
@@ -132,7 +133,17 @@ TEST(Sketch, CubesWithStraightOrCurvedEdgesSurfaceWithoutFoldsAtTheirCreases) {
       EXPECT_EQ(folds(network, scheme), 0) << schemeName(scheme);
     const Surface surface = Surface::build(network, {Scheme::GregoryG1});
     EXPECT_TRUE(surface.repairMoves().empty()); // creases are left alone
-    for (int v = 0; v < static_cast<int>(network.vertices().size()); ++v) EXPECT_GT(surface.vertexResidualAngle(v), 0.3);
+    for (int v = 0; v < static_cast<int>(network.vertices().size()); ++v) {
+      EXPECT_GT(surface.vertexResidualAngle(v), 0.3);
+      EXPECT_TRUE(surface.isCreaseVertex(v));
+    }
+    for (int e = 0; e < static_cast<int>(network.segments().size()); ++e) EXPECT_TRUE(surface.isCreaseSegment(e));
+    // The faces meet at right angles along the edges: the continuity report
+    // leaves them out of its normal angles, and still sees them closed.
+    const ContinuityReport c = measureContinuity(surface);
+    EXPECT_EQ(c.creaseSegments, 12);
+    EXPECT_EQ(c.samples, 0u);
+    EXPECT_LT(c.maxPositionGap, 1e-12);
     // Each face meets the corners' planes: at a corner the patch normal is
     // the face's own normal there (its two edges' cross product), not the
     // mean of the three faces.
@@ -395,10 +406,17 @@ TEST(Sketch, FacesCommandWritesTheNetworkAndEveryCommandReadsObjCurveGraphs) {
   EXPECT_EQ(summary["faces_by_sides"]["4"], 6);
   EXPECT_EQ(summary["nodes_by_valence"]["3"], 8);
   EXPECT_EQ(summary["euler_characteristic"], 2);
+  EXPECT_EQ(summary["crease_nodes"], 8);
+  EXPECT_EQ(summary["crease_edges"].size(), 12u);
+  EXPECT_EQ(summary["g1_edges"], 0);
   EXPECT_EQ(readNetworkFile(net).faces.size(), 6u);
   const test::CliRun check = test::runCli("check '" + obj + "' --json");
   ASSERT_EQ(check.exitCode, 0) << check.err;
-  EXPECT_EQ(nlohmann::json::parse(check.out)["patches"], 6);
+  const auto report = nlohmann::json::parse(check.out);
+  EXPECT_EQ(report["patches"], 6);
+  EXPECT_EQ(report["creases"]["vertices"].size(), 8u);
+  EXPECT_EQ(report["creases"]["segments"].size(), 12u);
+  EXPECT_EQ(report["continuity"]["crease_segments"], 12);
   // A mesh OBJ is not a curve graph: named in the error.
   const std::string mesh = (scratch.path() / "mesh.obj").string();
   writeFileAtomically(mesh, [](std::ostream &out) { out << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"; });

@@ -49,6 +49,10 @@
 //     seen from its straight side).
 //  5. the description: one curve per fitted curve, faces as loops of curve
 //     ranges, network tolerance 1e-6 (the curves meet at the nodes exactly).
+//  6. creases: the network's crease vertices (tangents more than 5° out of
+//     one plane) and the edges where its faces meet at a sharp angle there,
+//     as every surface built on it treats them (Surface::isCreaseVertex,
+//     isCreaseSegment).
 //
 // The result also carries the summary a user needs to judge it: nodes by
 // valence and kind, each curve's fit error, faces by sides, the dangling
@@ -124,6 +128,9 @@ struct SketchNode {
   int valence = 0;
   NodeKind kind = NodeKind::Junction;
   bool planeEnforced = false; ///< the curves' tangents were made to share the node's tangent plane
+  /// The curves' tangents leave their plane by more than 5° (Surface::isCreaseVertex):
+  /// each face corner there keeps its own plane.
+  bool crease = false;
 };
 
 struct SketchCurve {
@@ -145,6 +152,11 @@ struct SketchResult {
   std::vector<std::string> refusedFaces;
   /// Loops left out as the open side of a sheet (holes of the surface).
   std::vector<std::string> openLoops;
+  /// Segments of the network between two faces, by how the surface joins
+  /// across them (Surface::isCreaseSegment): G¹, or a crease (a sharp edge,
+  /// each named by its curve and end points).
+  int g1Edges = 0;
+  std::vector<std::string> creaseEdges;
   int edges = 0;                 ///< edges between nodes in the faced part
   int facedNodes = 0;            ///< nodes in the faced part
   /// V − E + F over the faced part (nodes, edges and faces found, including

@@ -10,6 +10,7 @@
 
 #include <Eigen/Dense>
 
+#include "analysis/vertex_frames.hpp"
 #include "curvenet/error.hpp"
 #include "graph/welded_graph.hpp"
 
@@ -709,6 +710,30 @@ private:
   std::vector<SketchCurve> curveSummaries_;
 };
 
+/// Step 6: the crease nodes and edges of the network the description builds.
+void markCreases(SketchResult &result, const std::string &file) {
+  if (result.description.faces.empty()) return;
+  const Network network = Network::build(result.description, file);
+  const std::vector<VertexFrame> frames = computeVertexFrames(network);
+  for (int v = 0; v < static_cast<int>(network.vertices().size()); ++v) {
+    if (!frames[v].crease) continue;
+    const Vec3 p = network.vertices()[v].position;
+    for (SketchNode &node : result.nodes)
+      if (norm(node.position - p) <= 1e-9 * network.diagonal()) node.crease = true;
+  }
+  for (int e = 0; e < static_cast<int>(network.segments().size()); ++e) {
+    const Segment &seg = network.segments()[e];
+    if (seg.isBoundary()) continue;
+    if (!isCreaseSegment(network, frames, e)) {
+      ++result.g1Edges;
+      continue;
+    }
+    result.creaseEdges.push_back("curve " + std::to_string(seg.sourceCurve) + " from " +
+                                 formatPoint(network.vertices()[seg.start].position) + " to " +
+                                 formatPoint(network.vertices()[seg.end].position));
+  }
+}
+
 } // namespace
 } // namespace graph
 
@@ -727,7 +752,9 @@ SketchResult networkFromCurveGraph(const CurveGraph &input, const SketchOptions 
   if (!(diagonal > 0)) throw InputError(file, {}, "the curve graph has no extent (all points coincide)");
   if (!(options.weld >= 0 && options.weld < 0.1)) throw InputError(file, {}, "the weld distance must be in [0, 0.1) of the diagonal");
   const graph::WeldedGraph welded = graph::weldCurveGraph(input, options.weld * diagonal, diagonal);
-  return graph::Builder(welded, input, options, diagonal, file).run();
+  SketchResult result = graph::Builder(welded, input, options, diagonal, file).run();
+  graph::markCreases(result, file);
+  return result;
 }
 
 } // namespace v1

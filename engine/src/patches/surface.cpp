@@ -971,6 +971,12 @@ SurfacePoint2 Surface::evaluateSecondOrder(int face, const Vec2 &uv, double step
 
 Vec3 Surface::vertexNormal(int vertex) const { return impl_->frames.at(vertex).normal; }
 double Surface::vertexResidualAngle(int vertex) const { return impl_->frames.at(vertex).residualAngle; }
+bool Surface::isCreaseVertex(int vertex) const { return impl_->frames.at(vertex).crease; }
+bool Surface::isCreaseSegment(int segment) const {
+  if (segment < 0 || segment >= static_cast<int>(impl_->network.segments().size()))
+    throw std::out_of_range("segment " + std::to_string(segment));
+  return curvenet::isCreaseSegment(impl_->network, impl_->frames, segment);
+}
 
 VertexCurvatureInfo Surface::vertexCurvature(int vertex) const {
   const VertexCurvature &vc = impl_->curvatures.at(vertex);
