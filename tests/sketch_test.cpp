@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <numbers>
+#include <map>
+#include <random>
 #include <set>
 #include <string>
 
@@ -19,6 +21,7 @@
 #include "curvenet/network.hpp"
 #include "curvenet/sketch.hpp"
 #include "curvenet/surface.hpp"
+#include "curvenet/tessellate.hpp"
 #include "cli_support.hpp"
 #include "scratch.hpp"
 
@@ -107,7 +110,117 @@ void expectOutward(const Network &network, const Vec3 &centre) {
   }
 }
 
+/// The octant network of the unit sphere (6 vertices on the axes, 12 cubic
+/// quarter arcs, 8 three-sided faces, outward), as a curve traced on a mesh
+/// is: each end tangent turned out of the sphere's tangent plane by
+/// `tiltDegrees` in a seeded direction. `normals`: each curve carries the
+/// sphere's normal at 33 of its points, as a traced curve carries the mesh's.
+NetworkDescription tracedSphereOctants(double tiltDegrees, bool normals) {
+  NetworkDescription d;
+  const Vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  std::map<std::pair<int, int>, int> arcOf;
+  std::mt19937 rng(27);
+  std::uniform_real_distribution<double> turn(0, 2 * kPi);
+  const double k = 4.0 / 3.0 * std::tan(kPi / 8); // the cubic closest to a quarter circle
+  auto tilted = [&](const Vec3 &at, const Vec3 &arm) {
+    // `arm` turned by the tilt about an axis perpendicular to it.
+    const Vec3 u = normalized(cross(arm, at)), w = normalized(cross(arm, u));
+    const double phi = turn(rng), a = tiltDegrees * kPi / 180;
+    const Vec3 axis = u * std::cos(phi) + w * std::sin(phi), e = normalized(arm);
+    return (e * std::cos(a) + cross(axis, e) * std::sin(a)) * norm(arm);
+  };
+  for (int a = 0; a < 6; ++a)
+    for (int b = a + 1; b < 6; ++b) {
+      if (b == a + 1 && a % 2 == 0) continue; // opposite axes
+      const Vec3 p = axes[a], q = axes[b];
+      arcOf[{a, b}] = static_cast<int>(d.curves.size());
+      d.curves.emplace_back(3, std::vector<double>{0, 0, 0, 0, 1, 1, 1, 1},
+                            std::vector<Vec3>{p, p + tilted(p, q * k), q + tilted(q, p * k), q});
+    }
+  auto side = [&](int a, int b) {
+    return a < b ? SideDescription{arcOf.at({a, b}), 0.0, 1.0} : SideDescription{arcOf.at({b, a}), 1.0, 0.0};
+  };
+  for (int sx : {0, 1})
+    for (int sy : {2, 3})
+      for (int sz : {4, 5}) {
+        // Counter-clockwise about the outward normal: x → y → z when the
+        // octant's signs multiply to +1.
+        const bool positive = (sx == 0) == ((sy == 2) == (sz == 4));
+        FaceDescription face;
+        face.sides = positive ? std::vector{side(sx, sy), side(sy, sz), side(sz, sx)}
+                              : std::vector{side(sx, sz), side(sz, sy), side(sy, sx)};
+        d.faces.push_back(face);
+      }
+  if (normals)
+    for (const BSplineCurve &c : d.curves) {
+      CurveNormals n;
+      for (int j = 0; j <= 32; ++j) {
+        n.parameters.push_back(j / 32.0);
+        n.normals.push_back(normalized(c.point(j / 32.0)));
+      }
+      d.curveNormals.push_back(n);
+    }
+  return d;
+}
+
+/// Largest distance of the tessellated surface from the unit sphere.
+double sphereDeviation(const Surface &surface) {
+  double worst = 0;
+  for (const Vec3 &p : tessellate(surface, {16}).positions) worst = std::max(worst, std::abs(norm(p) - 1));
+  return worst;
+}
+
 } // namespace
+
+TEST(Sketch, NormalsAlongTracedCurvesAreTheSurfaceNormalsThere) {
+  const Network plain = Network::build(tracedSphereOctants(2.0, false));
+  const Network traced = Network::build(tracedSphereOctants(2.0, true));
+  expectOutward(traced, {0, 0, 0});
+  const Surface withNormals = Surface::build(traced, {Scheme::GregoryG1});
+  const Surface without = Surface::build(plain, {Scheme::GregoryG1});
+  EXPECT_TRUE(withNormals.foldedFaces().empty());
+  // The given normals set the vertex planes: the sphere's, exactly.
+  for (int v = 0; v < static_cast<int>(traced.vertices().size()); ++v)
+    EXPECT_LT(angleBetween(withNormals.vertexNormal(v), normalized(traced.vertices()[v].position)), 1e-12);
+  // Along every curve, from both faces: the given normal (made perpendicular
+  // to the repaired curve).
+  const Network &built = withNormals.network();
+  double worst = 0;
+  for (int e = 0; e < static_cast<int>(built.segments().size()); ++e) {
+    const Segment &seg = built.segments()[e];
+    const CurveNormals &given = built.description().curveNormals.at(seg.sourceCurve);
+    for (int j = 0; j <= 100; ++j) {
+      const double u = j / 100.0;
+      const Vec3 t = normalized(seg.curve.derivatives(u)[1]);
+      const Vec3 n = given.at(seg.sourceFrom + (seg.sourceTo - seg.sourceFrom) * u);
+      const Vec3 expected = normalized(n - t * dot(n, t));
+      for (int f : seg.faces) {
+        const Vec3 normal = withNormals.evaluate(f, withNormals.domainPointOnSegment(f, e, u)).normal;
+        worst = std::max(worst, std::atan2(norm(cross(normal, expected)), dot(normal, expected)) * 180 / kPi);
+      }
+    }
+  }
+  EXPECT_LT(worst, 1e-6);
+  // And the surface lies closer to the sphere than one whose fences follow
+  // the curves' own tangent planes.
+  const double near = sphereDeviation(withNormals), far = sphereDeviation(without);
+  std::printf("deviation from the sphere: %.3g with normals, %.3g without; normal error along the curves %.3g deg\n",
+              near, far, worst);
+  EXPECT_LT(near, far);
+  // The native format keeps them.
+  const NetworkDescription again = parseNetworkJson(networkToJson(tracedSphereOctants(2.0, true)), "octants.json");
+  ASSERT_EQ(again.curveNormals.size(), 12u);
+  EXPECT_LT(norm(again.curveNormals[3].at(0.37) - tracedSphereOctants(2.0, true).curveNormals[3].at(0.37)), 1e-12);
+  // Bad normals are named by their path.
+  try {
+    parseNetworkJson("{\"format\": \"curvenet-network\", \"version\": 1, \"curves\": [{\"degree\": 1, \"knots\": [0, 0, 1, 1], "
+                     "\"points\": [[0, 0, 0], [1, 0, 0]], \"normals\": {\"parameters\": [0, 2], \"vectors\": [[0, 0, 1], [0, 0, 1]]}}]}",
+                     "bad.json");
+    FAIL() << "no error";
+  } catch (const InputError &e) {
+    EXPECT_NE(std::string(e.what()).find("curves[0].normals.parameters[1]"), std::string::npos) << e.what();
+  }
+}
 
 TEST(Sketch, CubeEdgesWeldIntoTheCubeWithSixOutwardFaces) {
   const SketchResult r = networkFromCurveGraph(cubeEdges());

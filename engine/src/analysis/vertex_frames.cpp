@@ -7,6 +7,27 @@
 namespace curvenet {
 inline namespace v1 {
 
+namespace {
+
+/// The mean of the normals given along the curves at vertex v (each turned
+/// to agree with the first), unit; zero when no curve there carries any.
+Vec3 givenNormal(const Network &network, int v) {
+  const auto &given = network.description().curveNormals;
+  if (given.empty()) return {0, 0, 0};
+  Vec3 sum{0, 0, 0}, first{0, 0, 0};
+  for (int s : network.vertices()[v].segments) {
+    const Segment &seg = network.segments()[s];
+    if (seg.sourceCurve < 0 || seg.sourceCurve >= static_cast<int>(given.size()) || given[seg.sourceCurve].empty()) continue;
+    Vec3 n = given[seg.sourceCurve].at(seg.start == v ? seg.sourceFrom : seg.sourceTo);
+    if (squaredNorm(first) == 0) first = n;
+    if (dot(n, first) < 0) n = -n;
+    sum += n;
+  }
+  return squaredNorm(sum) > 0 ? normalized(sum) : sum;
+}
+
+} // namespace
+
 std::vector<VertexFrame> computeVertexFrames(const Network &network) {
   std::vector<VertexFrame> frames(network.vertices().size());
   std::vector<int> all(frames.size());
@@ -49,10 +70,14 @@ void updateVertexFrames(const Network &network, std::span<const int> listed, std
     // Tangents along one line leave the plane free: take the corners' plane.
     const double spread = solver.eigenvalues()(1) / std::max(solver.eigenvalues()(2), 1e-300);
     if (spread < 1e-10 && squaredNorm(hint) > 0) normal = normalized(hint);
+    // Normals given along the curves (a traced mesh's) set the plane.
+    const Vec3 given = givenNormal(network, v);
+    const bool hasGiven = squaredNorm(given) > 0;
+    if (hasGiven) normal = given;
     if (dot(normal, hint) < 0) normal = -normal;
     double residual = 0;
     for (const Vec3 &t : tangents) residual = std::max(residual, std::asin(std::min(1.0, std::abs(dot(t, normal)))));
-    frames[v] = {normalized(normal), residual, tangents.size() >= 3 && residual > kCreaseResidual};
+    frames[v] = {normalized(normal), residual, !hasGiven && tangents.size() >= 3 && residual > kCreaseResidual};
   }
 }
 

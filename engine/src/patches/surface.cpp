@@ -331,6 +331,18 @@ std::shared_ptr<const NormalFence> buildFence(const Impl &impl, int e, int side 
   if (keptG1(impl, seg.faces[0]) || keptG1(impl, seg.faces[1])) return SurfaceAccess::sharedFence(*impl.g1, e);
   const Vec3 n0 = fenceEndNormal(impl.network, impl.frames, e, false, side);
   const Vec3 n1 = fenceEndNormal(impl.network, impl.frames, e, true, side);
+  const auto &given = impl.network.description().curveNormals;
+  if (seg.sourceCurve >= 0 && seg.sourceCurve < static_cast<int>(given.size()) && !given[seg.sourceCurve].empty()) {
+    // Normals sampled along the curve, turned to the side the faces' loops give.
+    const CurveNormals &normals = given[seg.sourceCurve];
+    return std::make_shared<const NormalFence>(NormalFence::fromNormalsAlong(
+        seg.curve,
+        [&normals, &seg, side = n0](double u) {
+          const Vec3 n = normals.at(seg.sourceFrom + (seg.sourceTo - seg.sourceFrom) * u);
+          return dot(n, side) < 0 ? -n : n;
+        },
+        n0, n1));
+  }
   if (impl.referenceFences) {
     // The reference surface's normal, turned to the side the faces' loops give.
     const ReferenceSurface &reference = *impl.network.reference();
