@@ -384,6 +384,41 @@ TEST(Sketch, CornersOfStrokesSharingAPointAreNodesAndTheOpenSideOfASheetIsLeftOu
   EXPECT_EQ(folds(network, Scheme::GregoryG1), 0);
 }
 
+TEST(Sketch, LoneCyclesBesideOtherPartsAreNamedNotCapped) {
+  // A tube drawn as its two rims, nothing along it: the region between them
+  // is a cylinder, not two discs.
+  auto circle = [](CurveGraph &g, double z, double x0) {
+    std::vector<int> chain;
+    for (int k = 0; k < 64; ++k) {
+      const double a = 2 * kPi * k / 64;
+      chain.push_back(static_cast<int>(g.points.size()));
+      g.points.push_back({x0 + std::cos(a), std::sin(a), z});
+    }
+    chain.push_back(chain.front());
+    g.strokes.push_back(chain);
+  };
+  CurveGraph tube;
+  circle(tube, 0, 0);
+  circle(tube, 1, 0);
+  const SketchResult rims = networkFromCurveGraph(tube);
+  EXPECT_TRUE(rims.description.faces.empty());
+  EXPECT_EQ(rims.notDiscs.size(), 4u); // both sides of both rims
+  EXPECT_NE(rims.notDiscs[0].find("lone cycle"), std::string::npos) << rims.notDiscs[0];
+  // A ring beside a cube: the cube keeps its six faces, the ring is named.
+  CurveGraph both = cubeEdges(0.05);
+  circle(both, 0, 4);
+  const SketchResult r = networkFromCurveGraph(both);
+  EXPECT_EQ(r.description.faces.size(), 6u);
+  EXPECT_EQ(r.notDiscs.size(), 2u);
+  EXPECT_TRUE(watertight(Network::build(r.description)));
+  // Alone, a closed stroke is the outline of one sheet and keeps its face.
+  CurveGraph one;
+  circle(one, 0, 0);
+  const SketchResult sheet = networkFromCurveGraph(one);
+  EXPECT_TRUE(sheet.notDiscs.empty());
+  EXPECT_EQ(sheet.description.faces.size(), 1u);
+}
+
 TEST(Sketch, ObjReaderTakesPolylinesAndNamesBadLines) {
   const std::string text = "# a triangle drawn as one closed polyline and a spur\no tri\nv 0 0 0\nv 1 0 0\nvn 0 0 1\n"
                            "v 0 1 0\nl 1 2 3 1\ng spur\nv 2 2 2\nl 3 -1\n";
@@ -447,7 +482,7 @@ TEST(Sketch, PublicSketchesCloseIntoWatertightNetworks) {
     const SketchResult r = networkFromCurveGraph(readCurveGraphFile(path), {}, path);
     EXPECT_EQ(static_cast<int>(r.description.faces.size()), e.faces);
     EXPECT_EQ(r.eulerCharacteristic, e.euler);
-    EXPECT_TRUE(r.dangling.empty() && r.openLoops.empty() && r.refusedFaces.empty());
+    EXPECT_TRUE(r.dangling.empty() && r.openLoops.empty() && r.refusedFaces.empty() && r.notDiscs.empty());
     for (const SketchCurve &c : r.curves) EXPECT_LE(c.maxError, SketchOptions{}.fitTolerance);
     const Network network = Network::build(r.description, path);
     EXPECT_TRUE(watertight(network));

@@ -61,6 +61,7 @@ nlohmann::json summaryJson(const SketchResult &r, const SketchOptions &options) 
   s["crease_edges"] = r.creaseEdges;
   s["dangling"] = r.dangling;
   s["open_loops"] = r.openLoops;
+  s["not_discs"] = r.notDiscs;
   s["refused_faces"] = r.refusedFaces;
   s["edges"] = r.edges;
   s["faced_nodes"] = r.facedNodes;
@@ -87,9 +88,10 @@ void printSummary(const SketchResult &r, const SketchOptions &options, const std
   for (const std::string &c : r.creaseEdges) std::printf("crease: %s\n", c.c_str());
   for (const std::string &d : r.dangling) std::printf("dangling: %s\n", d.c_str());
   for (const std::string &l : r.openLoops) std::printf("left open: %s\n", l.c_str());
+  for (const std::string &l : r.notDiscs) std::printf("not a disc: %s\n", l.c_str());
   for (const std::string &f : r.refusedFaces) std::printf("refused: %s\n", f.c_str());
   std::printf("Euler characteristic %d (%d nodes, %d edges, %zu loops)\n", r.eulerCharacteristic, r.facedNodes, r.edges,
-              r.description.faces.size() + r.openLoops.size() + r.refusedFaces.size());
+              r.description.faces.size() + r.openLoops.size() + r.refusedFaces.size() + r.notDiscs.size());
   std::printf("wrote %s\n", output.c_str());
 }
 

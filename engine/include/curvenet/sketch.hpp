@@ -46,7 +46,9 @@
 //     one (n + 2)·180°) is the open side of a sheet and is left out; a loop
 //     of more than 8 sides is refused by name. Consecutive edges of one
 //     curve through a node of three or more edges form one side (a T-node
-//     seen from its straight side).
+//     seen from its straight side). A part of the graph that is one cycle of
+//     curves beside other parts bounds a region that need not be a disc (a
+//     tube between two rims): its loops are named, not built.
 //  5. the description: one curve per fitted curve, faces as loops of curve
 //     ranges, network tolerance 1e-6 (the curves meet at the nodes exactly).
 //  6. creases: the network's crease vertices (tangents more than 5° out of
@@ -156,6 +158,10 @@ struct SketchResult {
   std::vector<std::string> refusedFaces;
   /// Loops left out as the open side of a sheet (holes of the surface).
   std::vector<std::string> openLoops;
+  /// Loops left out because the region they bound need not be a disc: a
+  /// part of the graph that is a single cycle of curves beside other parts
+  /// (a tube's rims with no stroke along it would otherwise be capped).
+  std::vector<std::string> notDiscs;
   /// Segments of the network between two faces, by how the surface joins
   /// across them (Surface::isCreaseSegment): G¹, or a crease (a sharp edge,
   /// each named by its curve and end points).
