@@ -337,9 +337,9 @@ TEST(RobustnessCorpus, SharedSketches) {
       {"spherecylinder.obj", {{kGoal, kGoal, {3, 1.05, 1e-4, 1e-6}}}},
       {"sewing_machine.obj", {{{7, 1.05, 1e-4, 1e-6}, {4, 1.05, 1e-4, 1e-6}, {26, 3.9, 1e-4, 1e-6}}}},
       {"box.obj", {{{4, 1.05, 1e-4, 7}, {0, 1.05, 1e-4, 7}, {28, 4.2, 1e-4, 7}}}},
-      {"dress.obj", {{{2, 1.05, 1e-4, 1e-6}, kGoal, {4, 830, 1e-4, 1e-6}}}},
+      {"dress.obj", {{{2, 1.05, 1e-4, 1e-6}, kGoal, {4, 2500, 1e-4, 1e-6}}}},
       {"ellipsetorus.obj", {{kGoal, kGoal, {30, 1.15, 1e-4, 1e-6}}}},
-      {"iron.obj", {{{2, 1.05, 1e-4, 180}, {2, 1.05, 1e-4, 180}, {34, 2.4, 1e-4, 180}}}},
+      {"iron.obj", {{{2, 1.05, 1e-4, 180}, {2, 1.05, 1e-4, 180}, {34, 2.5, 1e-4, 180}}}},
       {"bathtub.obj", {{kGoal, kGoal, {55, 5.6, 1e-4, 1e-6}}}},
   };
 

@@ -161,6 +161,7 @@ RepairResult repairNetwork(const Network &network, const RepairOptions &options)
     TweakOptions tweakOptions;
     tweakOptions.analysis = options.analysis;
     tweakOptions.skipDegreeOne = true;
+    tweakOptions.skipCreases = true;
     const TweakResult tweak = tweakNetwork(turned ? *turned : network, tweakOptions);
     if (!tweak.moves.empty()) {
       result.network = tweak.network;
