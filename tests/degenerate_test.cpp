@@ -113,38 +113,66 @@ TEST(Degenerate, CurveFoldingBackOnItselfIsRefused) {
 // least-squares plane is the vertex normal, its residual angle is reported,
 // the analysis says so, and the continuity report shows the normal mismatch
 // that the patches' own corner tangent planes cannot avoid.
-TEST(Degenerate, VertexWithoutCommonTangentPlane) {
+/// Three triangles around the origin vertex; the first spoke rises by
+/// `rise` out of the plane of the other two.
+NetworkDescription spokesAroundTheOrigin(double rise) {
   NetworkDescription d;
-  // Three triangles around the origin vertex; the first spoke rises out of
-  // the plane of the other two.
   const double pi = std::acos(-1.0);
   std::vector<Vec3> spoke;
   for (int k = 0; k < 3; ++k) spoke.push_back({std::cos(2 * pi * k / 3), std::sin(2 * pi * k / 3), 0});
-  spoke[0].z = 0.6; // the first spoke leaves the plane of the other two
+  spoke[0].z = rise;
   for (int k = 0; k < 3; ++k) d.curves.push_back(BSplineCurve::bezier({{0, 0, 0}, spoke[k] * 0.5, spoke[k]}));
   for (int k = 0; k < 3; ++k) {
     const Vec3 a = spoke[k], b = spoke[(k + 1) % 3];
     d.curves.push_back(BSplineCurve::bezier({a, (a + b) * 0.5 + Vec3{0, 0, 0.05}, b}));
   }
   for (int k = 0; k < 3; ++k) d.faces.push_back({{{k, 0, 1}, {3 + k, 0, 1}, {(k + 1) % 3, 1, 0}}, ""});
-  const Network network = Network::build(d);
-  int centre = -1;
+  return d;
+}
+
+int originVertex(const Network &network) {
   for (size_t v = 0; v < network.vertices().size(); ++v)
-    if (norm(network.vertices()[v].position) < 1e-12) centre = static_cast<int>(v);
-  ASSERT_GE(centre, 0);
-  SurfaceOptions kept{Scheme::GregoryG1};
-  kept.curves = CurveHandling::Kept;
-  const Surface surface = Surface::build(network, kept);
-  EXPECT_GT(surface.vertexResidualAngle(centre), 0.1); // radians: the spoke is ~25° out of plane
-  EXPECT_EQ(analyzeVertex(network, centre).verdict, VertexVerdict::NoTangentPlane);
-  EXPECT_GT(measureContinuity(surface, {8}).maxNormalAngleDeg, 1.0);
-  // By default the spokes' end tangents are turned into the fitted plane
-  // (the vertex stays put), and the surface is G¹ there.
-  const Surface repaired = Surface::build(network, {Scheme::GregoryG1});
-  EXPECT_FALSE(repaired.repairMoves().empty());
-  EXPECT_LE(repaired.vertexResidualAngle(centre), 1e-12);
-  EXPECT_EQ(norm(repaired.network().vertices()[size_t(centre)].position), 0.0);
-  EXPECT_LE(measureContinuity(repaired, {8}).maxNormalAngleDeg, 1e-6);
+    if (norm(network.vertices()[v].position) < 1e-12) return static_cast<int>(v);
+  return -1;
+}
+
+TEST(Degenerate, VertexWithoutCommonTangentPlane) {
+  // A spoke ~2° out of the others' plane: a drawing error. By default the
+  // spokes' end tangents are turned into the fitted plane (the vertex stays
+  // put), and the surface is G¹ there.
+  {
+    const Network network = Network::build(spokesAroundTheOrigin(0.05));
+    const int centre = originVertex(network);
+    ASSERT_GE(centre, 0);
+    SurfaceOptions kept{Scheme::GregoryG1};
+    kept.curves = CurveHandling::Kept;
+    const Surface surface = Surface::build(network, kept);
+    EXPECT_GT(surface.vertexResidualAngle(centre), 0.01);
+    EXPECT_FALSE(surface.isCreaseVertex(centre));
+    EXPECT_EQ(analyzeVertex(network, centre).verdict, VertexVerdict::NoTangentPlane);
+    EXPECT_GT(measureContinuity(surface, {8}).maxNormalAngleDeg, 0.1);
+    const Surface repaired = Surface::build(network, {Scheme::GregoryG1});
+    EXPECT_FALSE(repaired.repairMoves().empty());
+    EXPECT_LE(repaired.vertexResidualAngle(centre), 1e-12);
+    EXPECT_EQ(norm(repaired.network().vertices()[size_t(centre)].position), 0.0);
+    EXPECT_LE(measureContinuity(repaired, {8}).maxNormalAngleDeg, 1e-6);
+  }
+  // ~25° out: a crease, meant sharp. Repair leaves it alone, each face
+  // corner keeps its own plane, and nothing folds.
+  {
+    const Network network = Network::build(spokesAroundTheOrigin(0.6));
+    const int centre = originVertex(network);
+    ASSERT_GE(centre, 0);
+    const Surface surface = Surface::build(network, {Scheme::GregoryG1});
+    EXPECT_GT(surface.vertexResidualAngle(centre), 0.1); // radians
+    EXPECT_TRUE(surface.isCreaseVertex(centre));
+    EXPECT_TRUE(surface.repairMoves().empty());
+    EXPECT_TRUE(surface.foldedFaces().empty());
+    int creases = 0;
+    for (int e = 0; e < static_cast<int>(network.segments().size()); ++e) creases += surface.isCreaseSegment(e) ? 1 : 0;
+    EXPECT_GE(creases, 2); // the raised spoke's faces fold away from the flat one
+    EXPECT_EQ(measureContinuity(surface, {8}).creaseSegments, creases);
+  }
 }
 
 // A 2-sided face: handled as a 4-sided patch split at the curves' middles.

@@ -42,7 +42,8 @@ nlohmann::json summaryJson(const SketchResult &r, const SketchOptions &options) 
   s["nodes"] = nlohmann::json::array();
   for (const SketchNode &n : r.nodes)
     s["nodes"].push_back({{"position", {n.position.x, n.position.y, n.position.z}}, {"valence", n.valence},
-                          {"kind", toString(n.kind)}, {"tangent_plane_enforced", n.planeEnforced}});
+                          {"kind", toString(n.kind)}, {"tangent_plane_enforced", n.planeEnforced},
+                          {"crease", n.crease}});
   s["curves"] = nlohmann::json::array();
   double worst = 0;
   for (const SketchCurve &c : r.curves) {
@@ -53,8 +54,14 @@ nlohmann::json summaryJson(const SketchResult &r, const SketchOptions &options) 
   s["max_fit_error"] = worst;
   s["faces"] = r.description.faces.size();
   s["faces_by_sides"] = countsByKey(r.facesBySides);
+  int creases = 0;
+  for (const SketchNode &n : r.nodes) creases += n.crease ? 1 : 0;
+  s["crease_nodes"] = creases;
+  s["g1_edges"] = r.g1Edges;
+  s["crease_edges"] = r.creaseEdges;
   s["dangling"] = r.dangling;
   s["open_loops"] = r.openLoops;
+  s["not_discs"] = r.notDiscs;
   s["refused_faces"] = r.refusedFaces;
   s["edges"] = r.edges;
   s["faced_nodes"] = r.facedNodes;
@@ -74,11 +81,17 @@ void printSummary(const SketchResult &r, const SketchOptions &options, const std
   std::printf("faces: %zu by sides:", r.description.faces.size());
   for (const auto &[sides, count] : r.facesBySides) std::printf(" %d x %d", count, sides);
   std::printf("\n");
+  int creases = 0;
+  for (const SketchNode &n : r.nodes) creases += n.crease ? 1 : 0;
+  std::printf("crease nodes: %d (no tangent plane: each face corner keeps its own)\n", creases);
+  std::printf("edges between faces: %d G1, %zu creases (sharp)\n", r.g1Edges, r.creaseEdges.size());
+  for (const std::string &c : r.creaseEdges) std::printf("crease: %s\n", c.c_str());
   for (const std::string &d : r.dangling) std::printf("dangling: %s\n", d.c_str());
   for (const std::string &l : r.openLoops) std::printf("left open: %s\n", l.c_str());
+  for (const std::string &l : r.notDiscs) std::printf("not a disc: %s\n", l.c_str());
   for (const std::string &f : r.refusedFaces) std::printf("refused: %s\n", f.c_str());
   std::printf("Euler characteristic %d (%d nodes, %d edges, %zu loops)\n", r.eulerCharacteristic, r.facedNodes, r.edges,
-              r.description.faces.size() + r.openLoops.size() + r.refusedFaces.size());
+              r.description.faces.size() + r.openLoops.size() + r.refusedFaces.size() + r.notDiscs.size());
   std::printf("wrote %s\n", output.c_str());
 }
 

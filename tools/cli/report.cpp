@@ -100,6 +100,20 @@ nlohmann::json repairReport(const Surface &surface) {
                    "vertices never move"}};
 }
 
+/// The crease vertices and segments (Surface::isCreaseVertex,
+/// isCreaseSegment) and the segments the surface is G1 across.
+void addCreases(nlohmann::json &report, const Surface &surface) {
+  const Network &network = surface.network();
+  std::vector<int> vertices, creases, smooth;
+  for (int v = 0; v < static_cast<int>(network.vertices().size()); ++v)
+    if (surface.isCreaseVertex(v)) vertices.push_back(v);
+  for (int e = 0; e < static_cast<int>(network.segments().size()); ++e) {
+    if (network.segments()[e].isBoundary()) continue;
+    (surface.isCreaseSegment(e) ? creases : smooth).push_back(e);
+  }
+  report["creases"] = {{"vertices", vertices}, {"segments", creases}, {"g1_segments", smooth}};
+}
+
 nlohmann::json shapeReport(const ShapeReport &shape) {
   nlohmann::json faces = nlohmann::json::array();
   for (const FaceShape &f : shape.faces)
@@ -144,10 +158,13 @@ void addSurfaceReport(nlohmann::json &report, const Surface &surface, const Shap
                           {"max_boundary_deviation", c.maxBoundaryDeviation},
                           {"worst_normal_segment", c.worstNormalSegment},
                           {"shared_segments", c.sharedSegments},
+                          {"crease_segments", c.creaseSegments},
                           {"samples", c.samples},
                           {"sampling", "every shared segment at u = j/" + std::to_string(samplesPerSegment) +
                                            ", j = 0.." + std::to_string(samplesPerSegment) +
-                                           ", from both faces; lengths relative to the diagonal"}};
+                                           ", from both faces; normal angles on the G1 segments only (crease "
+                                           "segments are sharp by design); lengths relative to the diagonal"}};
+  addCreases(report, surface);
   const CurvatureJumpReport jump = measureCurvatureJump(surface);
   report["continuity"]["max_curvature_jump"] = jump.maxJump;
   report["continuity"]["mean_curvature_jump"] = jump.meanJump;

@@ -214,6 +214,10 @@ struct TweakOptions {
   /// Leave vertices with a degree-1 curve end as they are (listed in
   /// TweakResult::skippedVertices) instead of throwing InputError.
   bool skipDegreeOne = false;
+  /// Leave crease vertices (three or more curves leaving their plane by more
+  /// than 5°, Surface::isCreaseVertex) as they are, listed in
+  /// TweakResult::skippedVertices: no surface curvature is meant there.
+  bool skipCreases = false;
 };
 
 /// One control-point move.

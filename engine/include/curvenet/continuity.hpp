@@ -23,17 +23,20 @@ struct ContinuityOptions {
 };
 
 /// Figures over every segment shared by two faces (boundary segments have
-/// one face and only enter `maxBoundaryDeviation`).
+/// one face and only enter `maxBoundaryDeviation`). The normal angles are
+/// measured on the G¹ segments only: crease segments (Surface::isCreaseSegment)
+/// are sharp edges by design and enter the position gap alone.
 struct ContinuityReport {
   int sharedSegments = 0;
-  std::size_t samples = 0; ///< points compared on shared segments
+  int creaseSegments = 0; ///< of the shared ones, left out of the normal angles
+  std::size_t samples = 0; ///< points whose normals were compared (G¹ segments)
   int samplesPerSegment = 0;
   /// max |S_A − S_B| at the same curve parameter, relative to the diagonal.
   double maxPositionGap = 0;
   /// max / mean angle in degrees between the unit normals of the two faces
   /// (oriented consistently: faces that run the segment in the same
-  /// direction have one normal flipped). Computed as atan2(|a×b|, a·b) so
-  /// that angles far below 1e-6° are resolved.
+  /// direction have one normal flipped), over the G¹ segments. Computed as
+  /// atan2(|a×b|, a·b) so that angles far below 1e-6° are resolved.
   double maxNormalAngleDeg = 0, meanNormalAngleDeg = 0;
   int worstNormalSegment = -1; ///< segment with the largest normal angle (−1: none shared)
   /// max distance between a patch evaluated on its domain side and the

@@ -77,9 +77,28 @@ struct EdgeDescription {
   int masterSurface = -1;
 };
 
+/// Surface normals sampled along one curve (a curve traced on a mesh
+/// carries the mesh's normals): `normals[k]` at the curve's own parameter
+/// `parameters[k]` (increasing, inside the domain, at least 2). Between
+/// samples they are interpolated (the cubic through the four nearest
+/// samples, from 4 samples on, else linearly) and normalized. The fences of the curve's segments take
+/// them, made perpendicular to the curve, so the surface meets the surface
+/// the curves came from; at a vertex the given normals of its curves set the
+/// tangent plane (their mean), into which vertex repair turns the tangents.
+struct CurveNormals {
+  std::vector<double> parameters;
+  std::vector<Vec3> normals;
+  bool empty() const { return normals.empty(); }
+  /// The unit normal at parameter t (clamped to the sampled range).
+  Vec3 at(double t) const;
+};
+
 struct NetworkDescription {
   std::string name;
   std::vector<BSplineCurve> curves;
+  /// Optional, indexed like `curves` (shorter or an empty entry: no normals
+  /// along that curve). See CurveNormals.
+  std::vector<CurveNormals> curveNormals;
   std::vector<FaceDescription> faces;
   std::vector<EdgeDescription> edges; ///< optional; at most one per curve
   /// Relative tolerance: points closer than tolerance × bounding-box diagonal

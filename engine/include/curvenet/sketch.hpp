@@ -46,9 +46,15 @@
 //     one (n + 2)·180°) is the open side of a sheet and is left out; a loop
 //     of more than 8 sides is refused by name. Consecutive edges of one
 //     curve through a node of three or more edges form one side (a T-node
-//     seen from its straight side).
+//     seen from its straight side). A part of the graph that is one cycle of
+//     curves beside other parts bounds a region that need not be a disc (a
+//     tube between two rims): its loops are named, not built.
 //  5. the description: one curve per fitted curve, faces as loops of curve
 //     ranges, network tolerance 1e-6 (the curves meet at the nodes exactly).
+//  6. creases: the network's crease vertices (tangents more than 5° out of
+//     one plane) and the edges where its faces meet at a sharp angle there,
+//     as every surface built on it treats them (Surface::isCreaseVertex,
+//     isCreaseSegment).
 //
 // The result also carries the summary a user needs to judge it: nodes by
 // valence and kind, each curve's fit error, faces by sides, the dangling
@@ -100,6 +106,10 @@ struct SketchOptions {
   /// (Euler characteristic 2); 5e-4 misses crossings of bathtub and
   /// ellipsetorus, 4e-3 joins strokes of doghead and sewing_machine that
   /// only pass near each other. The default is the middle of that range.
+  /// The free stroke ends of iron (2) and bathtub (10) lie 3.6e-5 to 1.2e-4
+  /// of the diagonal from another stroke, 10–100× closer than any stroke's
+  /// samples: drawn to end on it, so they become T-nodes; below 3.6e-5 they
+  /// are named as dangling strokes instead.
   double weld = 1.5e-3;
   /// Largest distance of a stroke point from its fitted curve, relative to
   /// the diagonal, that the fit aims for.
@@ -124,6 +134,9 @@ struct SketchNode {
   int valence = 0;
   NodeKind kind = NodeKind::Junction;
   bool planeEnforced = false; ///< the curves' tangents were made to share the node's tangent plane
+  /// The curves' tangents leave their plane by more than 5° (Surface::isCreaseVertex):
+  /// each face corner there keeps its own plane.
+  bool crease = false;
 };
 
 struct SketchCurve {
@@ -145,6 +158,15 @@ struct SketchResult {
   std::vector<std::string> refusedFaces;
   /// Loops left out as the open side of a sheet (holes of the surface).
   std::vector<std::string> openLoops;
+  /// Loops left out because the region they bound need not be a disc: a
+  /// part of the graph that is a single cycle of curves beside other parts
+  /// (a tube's rims with no stroke along it would otherwise be capped).
+  std::vector<std::string> notDiscs;
+  /// Segments of the network between two faces, by how the surface joins
+  /// across them (Surface::isCreaseSegment): G¹, or a crease (a sharp edge,
+  /// each named by its curve and end points).
+  int g1Edges = 0;
+  std::vector<std::string> creaseEdges;
   int edges = 0;                 ///< edges between nodes in the faced part
   int facedNodes = 0;            ///< nodes in the faced part
   /// V − E + F over the faced part (nodes, edges and faces found, including

@@ -366,6 +366,19 @@ public:
   Vec3 vertexNormal(int vertex) const;
   double vertexResidualAngle(int vertex) const;
 
+  /// A crease vertex: three or more curves whose tangents leave their plane
+  /// by more than 5° (a lid meeting a wall, a cube's corner). No tangent
+  /// plane is meant there: vertex repair leaves it alone, each face corner
+  /// keeps the plane of its own two curves, and vertexNormal is only their
+  /// mean.
+  bool isCreaseVertex(int vertex) const;
+  /// A crease segment: at a crease vertex its two faces' corner planes meet
+  /// at 20° or more, so each face takes its own corner's normal there and
+  /// the surface is only C⁰ across it (a sharp edge). Every other segment
+  /// shared by two faces is G¹ (its faces share one fence). False on the
+  /// boundary.
+  bool isCreaseSegment(int segment) const;
+
   /// The curvature fitted at vertex v from its curves ([SV14] Sec. 2,
   /// App. A; computed for every scheme), or for gregory-g2 with the
   /// reference edge curvature the reference surface's tensor.

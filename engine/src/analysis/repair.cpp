@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "analysis/editable_curve.hpp"
+#include "analysis/vertex_frames.hpp"
 #include "curvenet/analysis.hpp"
 #include "curvenet/error.hpp"
 #include "curvenet/surface.hpp"
@@ -124,13 +125,18 @@ BSplineCurve turnCurve(const Network &network, int curveIndex, std::vector<EndTu
   return edit.curve();
 }
 
-/// Step 1 on every vertex without a tangent plane.
+/// A vertex whose tangents leave their plane too far for a turn to be a
+/// repair (kCreaseResidual): a crease, where each face corner keeps its own
+/// plane.
+bool isCrease(const VertexAnalysis &va) { return va.valence >= 3 && va.tangentResidual > kCreaseResidual; }
+
+/// Step 1 on every vertex without a tangent plane that is no crease.
 NetworkDescription turnTangents(const Network &network, const NetworkAnalysis &analysis, double tolerance,
                                 std::vector<RepairMove> &moves) {
   NetworkDescription out = network.description();
   std::map<int, std::vector<EndTurn>> byCurve;
   for (const VertexAnalysis &va : analysis.vertices) {
-    if (!(va.tangentResidual > tolerance)) continue;
+    if (!(va.tangentResidual > tolerance) || isCrease(va)) continue;
     for (const CurveEnd &end : va.ends) {
       const Vec3 inPlane = end.tangent - va.normal * dot(end.tangent, va.normal);
       if (squaredNorm(inPlane) == 0)
@@ -157,7 +163,7 @@ RepairResult repairNetwork(const Network &network, const RepairOptions &options)
   std::optional<Network> turned;
   if (options.tangentPlanes && analysis.maxTangentResidual > options.tangentTolerance) {
     result.network = turnTangents(network, analysis, options.tangentTolerance, result.moves);
-    turned = Network::build(result.network, network.name());
+    if (!result.moves.empty()) turned = Network::build(result.network, network.name());
   } else {
     result.network = network.description();
   }
@@ -165,6 +171,7 @@ RepairResult repairNetwork(const Network &network, const RepairOptions &options)
     TweakOptions tweakOptions;
     tweakOptions.analysis = options.analysis;
     tweakOptions.skipDegreeOne = true;
+    tweakOptions.skipCreases = true;
     const TweakResult tweak = tweakNetwork(turned ? *turned : network, tweakOptions);
     if (!tweak.moves.empty()) {
       result.network = tweak.network;

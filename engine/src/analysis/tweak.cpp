@@ -9,6 +9,7 @@
 #include <string>
 
 #include "analysis/editable_curve.hpp"
+#include "analysis/vertex_frames.hpp"
 #include "curvenet/analysis.hpp"
 #include "curvenet/error.hpp"
 
@@ -55,6 +56,10 @@ TweakResult tweakNetwork(const Network &network, const TweakOptions &options) {
   std::map<int, std::vector<EndTweak>> byCurve;
   for (const VertexAnalysis &va : analysis.vertices) {
     if (!(va.eulerResidualRelative > tolerance)) continue;
+    if (options.skipCreases && va.valence >= 3 && va.tangentResidual > kCreaseResidual) {
+      result.skippedVertices.push_back(va.vertex);
+      continue;
+    }
     if (options.skipDegreeOne && std::any_of(va.ends.begin(), va.ends.end(), [&](const CurveEnd &end) {
           return result.network.curves[end.sourceCurve].degree() < 2;
         })) {

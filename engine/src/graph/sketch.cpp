@@ -10,6 +10,7 @@
 
 #include <Eigen/Dense>
 
+#include "analysis/vertex_frames.hpp"
 #include "curvenet/error.hpp"
 #include "graph/welded_graph.hpp"
 
@@ -635,6 +636,44 @@ private:
     return sides;
   }
 
+  /// Per loop: it runs around a connected part that is a single cycle of
+  /// edges (as many edges as nodes) while other parts exist. Such a cycle
+  /// (a circle drawn alone beside a shape, the two rims of a tube with
+  /// nothing along it) bounds a disc on one side only if nothing else meets
+  /// its region, which the graph cannot tell: capping it would close a tube
+  /// into two lids. With one part only it is the outline of one sheet and
+  /// keeps its face.
+  std::vector<bool> loneCycleLoops() const {
+    std::vector<int> part(nodes_.size(), -1);
+    int parts = 0;
+    for (int start = 0; start < static_cast<int>(nodes_.size()); ++start) {
+      if (part[start] >= 0 || !nodes_[start].faced) continue;
+      std::vector<int> stack{start};
+      part[start] = parts;
+      while (!stack.empty()) {
+        const int v = stack.back();
+        stack.pop_back();
+        for (int h : nodes_[v].halves) {
+          const int w = headNode(edges_, h);
+          if (part[w] < 0) part[w] = parts, stack.push_back(w);
+        }
+      }
+      ++parts;
+    }
+    std::vector<int> nodeCount(parts, 0), edgeCount(parts, 0);
+    for (int v = 0; v < static_cast<int>(nodes_.size()); ++v)
+      if (part[v] >= 0) ++nodeCount[part[v]];
+    for (const Edge &e : edges_)
+      if (!e.dangling) ++edgeCount[part[e.from]];
+    std::vector<bool> lone(loops_.size(), false);
+    if (parts < 2) return lone;
+    for (std::size_t k = 0; k < loops_.size(); ++k) {
+      const int p = part[tailNode(edges_, loops_[k].halves.front())];
+      lone[k] = edgeCount[p] == nodeCount[p];
+    }
+    return lone;
+  }
+
   std::string loopName(const Loop &loop) const {
     std::string name = "loop through nodes";
     for (int h : loop.halves) name += " " + std::to_string(tailNode(edges_, h));
@@ -675,7 +714,15 @@ private:
     }
     for (const Node &node : nodes_) result.facedNodes += node.faced ? 1 : 0;
     result.eulerCharacteristic = result.facedNodes - result.edges + static_cast<int>(loops_.size());
-    for (const Loop &loop : loops_) {
+    const std::vector<bool> lone = loneCycleLoops();
+    for (std::size_t k = 0; k < loops_.size(); ++k) {
+      const Loop &loop = loops_[k];
+      if (lone[k]) {
+        result.notDiscs.push_back(loopName(loop) +
+                                  ": a lone cycle of curves joined to no other part; the region it bounds may be "
+                                  "a tube or handle with another part, not a disc (a stroke across makes discs)");
+        continue;
+      }
       const int corners = static_cast<int>(loop.halves.size());
       if (loop.cornerSum > corners * kPi + 1e-9) {
         result.openLoops.push_back(loopName(loop));
@@ -709,6 +756,30 @@ private:
   std::vector<SketchCurve> curveSummaries_;
 };
 
+/// Step 6: the crease nodes and edges of the network the description builds.
+void markCreases(SketchResult &result, const std::string &file) {
+  if (result.description.faces.empty()) return;
+  const Network network = Network::build(result.description, file);
+  const std::vector<VertexFrame> frames = computeVertexFrames(network);
+  for (int v = 0; v < static_cast<int>(network.vertices().size()); ++v) {
+    if (!frames[v].crease) continue;
+    const Vec3 p = network.vertices()[v].position;
+    for (SketchNode &node : result.nodes)
+      if (norm(node.position - p) <= 1e-9 * network.diagonal()) node.crease = true;
+  }
+  for (int e = 0; e < static_cast<int>(network.segments().size()); ++e) {
+    const Segment &seg = network.segments()[e];
+    if (seg.isBoundary()) continue;
+    if (!isCreaseSegment(network, frames, e)) {
+      ++result.g1Edges;
+      continue;
+    }
+    result.creaseEdges.push_back("curve " + std::to_string(seg.sourceCurve) + " from " +
+                                 formatPoint(network.vertices()[seg.start].position) + " to " +
+                                 formatPoint(network.vertices()[seg.end].position));
+  }
+}
+
 } // namespace
 } // namespace graph
 
@@ -727,7 +798,9 @@ SketchResult networkFromCurveGraph(const CurveGraph &input, const SketchOptions 
   if (!(diagonal > 0)) throw InputError(file, {}, "the curve graph has no extent (all points coincide)");
   if (!(options.weld >= 0 && options.weld < 0.1)) throw InputError(file, {}, "the weld distance must be in [0, 0.1) of the diagonal");
   const graph::WeldedGraph welded = graph::weldCurveGraph(input, options.weld * diagonal, diagonal);
-  return graph::Builder(welded, input, options, diagonal, file).run();
+  SketchResult result = graph::Builder(welded, input, options, diagonal, file).run();
+  graph::markCreases(result, file);
+  return result;
 }
 
 } // namespace v1

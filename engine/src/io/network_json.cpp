@@ -306,10 +306,39 @@ BSplineCurve readSampledCurve(const DocumentReader &r, const Json &j, const std:
   }
 }
 
+/// {"parameters": [t, ...], "vectors": [[x, y, z], ...]}: normals along a
+/// curve (CurveNormals), at increasing parameters of its domain.
+CurveNormals readCurveNormals(const DocumentReader &r, const Json &j, const std::string &path, const BSplineCurve &curve) {
+  r.expectObject(j, path);
+  r.checkKeys(j, path, {"parameters", "vectors"});
+  CurveNormals out;
+  out.parameters = r.numbers(r.required(j, "parameters", path), member(path, "parameters"));
+  const Json &vectors = r.required(j, "vectors", path);
+  const std::string vectorsPath = member(path, "vectors");
+  r.expectArray(vectors, vectorsPath);
+  for (std::size_t i = 0; i < vectors.size(); ++i) {
+    const Vec3 n = r.vec3(vectors[i], indexed(vectorsPath, i));
+    if (!(norm(n) > 0)) r.fail(indexed(vectorsPath, i), "a normal must not be the zero vector");
+    out.normals.push_back(normalized(n));
+  }
+  if (out.normals.size() != out.parameters.size())
+    r.fail(vectorsPath, "expected one vector per parameter (" + std::to_string(out.parameters.size()) + "), found " +
+                            std::to_string(out.normals.size()));
+  if (out.normals.size() < 2) r.fail(path, "normals along a curve need at least 2 samples");
+  for (std::size_t i = 0; i < out.parameters.size(); ++i) {
+    const double t = out.parameters[i];
+    if (t < curve.domainStart() || t > curve.domainEnd() || (i > 0 && !(t > out.parameters[i - 1])))
+      r.fail(indexed(member(path, "parameters"), i), "parameters must increase inside the curve's domain [" +
+                                                         std::to_string(curve.domainStart()) + ", " +
+                                                         std::to_string(curve.domainEnd()) + "]");
+  }
+  return out;
+}
+
 BSplineCurve readCurve(const DocumentReader &r, const Json &j, const std::string &path) {
   r.expectObject(j, path);
   if (j.contains("samples")) return readSampledCurve(r, j, path);
-  r.checkKeys(j, path, {"degree", "knots", "points", "weights"});
+  r.checkKeys(j, path, {"degree", "knots", "points", "weights", "normals"});
   // The degree bound is BSplineCurve's; it is checked here too so that the
   // knot-count arithmetic below never sees absurd values.
   int degree = static_cast<int>(r.integer(r.required(j, "degree", path), member(path, "degree"), 1, BSplineCurve::maxDegree));
@@ -568,6 +597,11 @@ NetworkDescription parseNetworkJson(const std::string &text, const std::string &
   r.expectArray(curves, "curves");
   d.curves.reserve(curves.size());
   for (std::size_t i = 0; i < curves.size(); ++i) d.curves.push_back(readCurve(r, curves[i], indexed("curves", i)));
+  for (std::size_t i = 0; i < curves.size(); ++i)
+    if (curves[i].contains("normals")) {
+      d.curveNormals.resize(curves.size());
+      d.curveNormals[i] = readCurveNormals(r, curves[i]["normals"], member(indexed("curves", i), "normals"), d.curves[i]);
+    }
 
   // No faces: a curve graph, whose faces the sketch stage finds.
   if (const Json *faces = r.optional(doc, "faces")) {
@@ -612,6 +646,14 @@ std::string networkToJson(const NetworkDescription &d) {
       s += (k ? ",\n        " : "\n        ") + vecText(c.controlPoints()[k], indexed(member(path, "points"), k));
     s += "\n      ]";
     if (c.isRational()) s += ",\n      \"weights\": " + listText(c.weights(), member(path, "weights"));
+    if (i < d.curveNormals.size() && !d.curveNormals[i].empty()) {
+      const CurveNormals &cn = d.curveNormals[i];
+      s += ",\n      \"normals\": {\"parameters\": " + listText(cn.parameters, member(path, "normals.parameters")) +
+           ", \"vectors\": [";
+      for (std::size_t k = 0; k < cn.normals.size(); ++k)
+        s += (k ? ", " : "") + vecText(cn.normals[k], indexed(member(path, "normals.vectors"), k));
+      s += "]}";
+    }
     s += "\n    }";
   }
   s += d.curves.empty() ? "],\n" : "\n  ],\n";

@@ -196,6 +196,10 @@ struct Surface::Impl {
   // copies the Impl and keeps every piece its edit does not touch, so the
   // ribbons of unchanged patches keep pointing at live fences and curvatures.
   std::vector<std::shared_ptr<const NormalFence>> fences;
+  /// The fence of faces[1] of a crease segment (isCreaseSegment), whose two
+  /// faces take their own corners' normals at a crease vertex; null on every
+  /// other segment, whose faces share `fences`.
+  std::vector<std::shared_ptr<const NormalFence>> creaseFences;
   std::vector<std::shared_ptr<const TransversalCurvature>> edgeCurvatures; ///< gregory-g2
   /// gregory-g2 with G¹-measured edge curvature (master–slave, averaging,
   /// named masters, connection curves): the G¹ surface measured, kept so that
@@ -349,10 +353,12 @@ std::vector<char> keptG1Faces(const Network &network, const SurfaceOptions &opti
   return kept;
 }
 
-/// The normal fence of segment e (shared by both faces of the edge).
-std::shared_ptr<const NormalFence> buildFence(const Impl &impl, int e) {
+/// The normal fence of segment e for the face on `side` (both faces share
+/// it unless the segment is a crease: see fenceEndNormal).
+std::shared_ptr<const NormalFence> buildFence(const Impl &impl, int e, int side = 0) {
   const Segment &seg = impl.network.segments()[e];
-  const Vec3 n0 = impl.frames[seg.start].normal, n1 = impl.frames[seg.end].normal;
+  const Vec3 n0 = fenceEndNormal(impl.network, impl.frames, e, false, side);
+  const Vec3 n1 = fenceEndNormal(impl.network, impl.frames, e, true, side);
   // A master surface's normal at the closest point of each fence sample:
   // every face along the edge then shares the master's tangent planes.
   if (const BSplineSurface *master = masterSurfaceOf(impl.network, seg))
@@ -361,6 +367,18 @@ std::shared_ptr<const NormalFence> buildFence(const Impl &impl, int e) {
   // An edge of a kept G¹ face keeps that patch's fence: the G² face across
   // it then shares its tangent planes along the whole edge.
   if (keptG1(impl, seg.faces[0]) || keptG1(impl, seg.faces[1])) return SurfaceAccess::sharedFence(*impl.g1, e);
+  const auto &given = impl.network.description().curveNormals;
+  if (seg.sourceCurve >= 0 && seg.sourceCurve < static_cast<int>(given.size()) && !given[seg.sourceCurve].empty()) {
+    // Normals sampled along the curve, turned to the side the faces' loops give.
+    const CurveNormals &normals = given[seg.sourceCurve];
+    return std::make_shared<const NormalFence>(NormalFence::fromNormalsAlong(
+        seg.curve,
+        [&normals, &seg, side = n0](double u) {
+          const Vec3 n = normals.at(seg.sourceFrom + (seg.sourceTo - seg.sourceFrom) * u);
+          return dot(n, side) < 0 ? -n : n;
+        },
+        n0, n1));
+  }
   if (impl.referenceFences) {
     // The reference surface's normal, turned to the side the faces' loops give.
     const ReferenceSurface &reference = *impl.network.reference();
@@ -487,6 +505,12 @@ struct FaceBuild {
   bool folded = false;
 };
 
+/// The fence face f sees along segment e.
+const NormalFence *fenceOf(const Impl &impl, int e, int f) {
+  const bool second = impl.network.segments()[e].faces[1] == f && impl.creaseFences[e];
+  return second ? impl.creaseFences[e].get() : impl.fences[e].get();
+}
+
 FaceBuild buildFace(const Impl &impl, int f) {
   const Face &face = impl.network.faces()[f];
   const bool g2 = impl.options.scheme == Scheme::GregoryG2;
@@ -524,7 +548,7 @@ FaceBuild buildFace(const Impl &impl, int f) {
       const double b0 = j == 0 ? 0.0 : side.breaks[j - 1];
       const double b1 = j + 1 == side.segments.size() ? 1.0 : side.breaks[j];
       if (b1 <= ds.sFrom || b0 >= ds.sTo) continue;
-      pieces.push_back({impl.fences[side.segments[j]].get(), (b0 - ds.sFrom) / width, (b1 - ds.sFrom) / width,
+      pieces.push_back({fenceOf(impl, side.segments[j], f), (b0 - ds.sFrom) / width, (b1 - ds.sFrom) / width,
                         side.segmentReversed[j], side.segments[j]});
     }
     ribbons.emplace_back(std::move(curve), std::move(pieces));
@@ -589,8 +613,11 @@ FaceBuild buildFace(const Impl &impl, int f) {
 /// The fences of the listed segments, in parallel.
 void buildEdges(Impl &impl, std::span<const int> fenceSegments) {
   impl.fences.resize(impl.network.segments().size());
+  impl.creaseFences.resize(impl.network.segments().size());
   forEachItem(fenceSegments.size(), [&](std::size_t k) {
-    impl.fences[fenceSegments[k]] = buildFence(impl, fenceSegments[k]);
+    const int e = fenceSegments[k];
+    impl.fences[e] = buildFence(impl, e);
+    impl.creaseFences[e] = isCreaseSegment(impl.network, impl.frames, e) ? buildFence(impl, e, 1) : nullptr;
   });
 }
 
@@ -1033,6 +1060,12 @@ SurfacePoint2 Surface::evaluateSecondOrder(int face, const Vec2 &uv, double step
 
 Vec3 Surface::vertexNormal(int vertex) const { return impl_->frames.at(vertex).normal; }
 double Surface::vertexResidualAngle(int vertex) const { return impl_->frames.at(vertex).residualAngle; }
+bool Surface::isCreaseVertex(int vertex) const { return impl_->frames.at(vertex).crease; }
+bool Surface::isCreaseSegment(int segment) const {
+  if (segment < 0 || segment >= static_cast<int>(impl_->network.segments().size()))
+    throw std::out_of_range("segment " + std::to_string(segment));
+  return curvenet::isCreaseSegment(impl_->network, impl_->frames, segment);
+}
 
 VertexCurvatureInfo Surface::vertexCurvature(int vertex) const {
   const VertexCurvature &vc = impl_->curvatures.at(vertex);

@@ -83,6 +83,12 @@ NormalFence NormalFence::curvatureCompatible(const BSplineCurve &segment, const 
 NormalFence NormalFence::fromNormalField(const BSplineCurve &segment,
                                          const std::function<Vec3(const Vec3 &)> &normalAt, const Vec3 &startNormal,
                                          const Vec3 &endNormal) {
+  return fromNormalsAlong(
+      segment, [&](double u) { return normalAt(segment.derivatives(u)[0]); }, startNormal, endNormal);
+}
+
+NormalFence NormalFence::fromNormalsAlong(const BSplineCurve &segment, const std::function<Vec3(double)> &normalAt,
+                                          const Vec3 &startNormal, const Vec3 &endNormal) {
   NormalFence fence;
   fence.curve_ = segment;
   std::vector<double> params(kFenceSteps + 1);
@@ -91,7 +97,7 @@ NormalFence NormalFence::fromNormalField(const BSplineCurve &segment,
     params[k] = double(k) / kFenceSteps;
     const auto d = segment.derivatives(params[k]);
     tangents[k] = normalized(d[1]);
-    Vec3 n = normalized(projectOut(normalAt(d[0]), tangents[k]));
+    Vec3 n = normalized(projectOut(normalAt(params[k]), tangents[k]));
     // The field's orientation is the caller's; keep the samples continuous.
     if (k > 0 && dot(n, normals[k - 1]) < 0) n = -n;
     normals[k] = n;

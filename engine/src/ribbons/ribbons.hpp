@@ -49,6 +49,10 @@ public:
   static NormalFence fromNormalField(const BSplineCurve &segment,
                                      const std::function<Vec3(const Vec3 &)> &normalAt, const Vec3 &startNormal,
                                      const Vec3 &endNormal);
+  /// The same with the normals given as a function of the segment
+  /// parameter u ∈ [0, 1] (normals sampled along the curve, CurveNormals).
+  static NormalFence fromNormalsAlong(const BSplineCurve &segment, const std::function<Vec3(double)> &normalAt,
+                                      const Vec3 &startNormal, const Vec3 &endNormal);
 
   Vec3 normal(double u) const;
   /// Normal and its derivative d N / d u.

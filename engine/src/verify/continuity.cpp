@@ -97,9 +97,13 @@ ContinuityReport measureContinuity(const Surface &surface, const ContinuityOptio
     report.maxBoundaryDeviation = std::max(report.maxBoundaryDeviation, fig.boundary / diagonal);
     if (!shared[e]) continue;
     ++report.sharedSegments;
+    report.maxPositionGap = std::max(report.maxPositionGap, fig.gap / diagonal);
+    if (surface.isCreaseSegment(e)) {
+      ++report.creaseSegments;
+      continue;
+    }
     report.samples += fig.samples;
     sumAngle += fig.sumAngle;
-    report.maxPositionGap = std::max(report.maxPositionGap, fig.gap / diagonal);
     if (report.worstNormalSegment < 0 || fig.maxAngle > report.maxNormalAngleDeg) {
       report.maxNormalAngleDeg = fig.maxAngle;
       report.worstNormalSegment = e;
