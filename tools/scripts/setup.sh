@@ -8,7 +8,7 @@ repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 build_dir=${CURVENET_BUILD_DIR:-$repo/build}
 
 packages=(
-  build-essential cmake ninja-build pkg-config
+  build-essential cmake ninja-build pkg-config mold
   libtbb-dev libeigen3-dev libembree-dev libopenimageio-dev
   libbenchmark-dev libgtest-dev libgmock-dev libhwy-dev nlohmann-json3-dev libcli11-dev
   python3-dev pybind11-dev python3-numpy python3-pytest
