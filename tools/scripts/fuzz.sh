@@ -26,12 +26,19 @@ CURVENET_EXTRA_PACKAGES="clang-14 libclang-rt-14-dev" bash "$repo/tools/scripts/
 cmake --build "$dir" -j "$(nproc)"
 
 corpus=$dir/corpus findings=$dir/findings
-harnesses=(fuzz_network_json fuzz_lop fuzz_mesh fuzz_network_builder fuzz_model_edit fuzz_c_api)
+harnesses=(fuzz_network_json fuzz_lop fuzz_mesh fuzz_network_builder fuzz_model_edit fuzz_c_api fuzz_curve_graph)
 for harness in "${harnesses[@]}"; do mkdir -p "$corpus/$harness"; done
 mkdir -p "$findings"
 "$dir/tests/fuzz/fuzz_seed_corpus" "$corpus/fuzz_network_json" "$corpus/fuzz_mesh"
 shared=$repo/../shared/data/transfinite-models
 if [ -d "$shared" ]; then cp -f "$shared"/*.lop "$corpus/fuzz_lop/"; fi
+# Curve graphs: a cube's twelve edges as OBJ polylines, and the public sketches.
+{
+  printf 'v %s\n' "0 0 0" "1 0 0" "1 1 0" "0 1 0" "0 0 1" "1 0 1" "1 1 1" "0 1 1"
+  printf 'l %s\n' "1 2" "2 3" "3 4" "4 1" "5 6" "6 7" "7 8" "8 5" "1 5" "2 6" "3 7" "4 8"
+} >"$corpus/fuzz_curve_graph/cube.obj"
+sketches=$repo/../shared/data/sketches
+if [ -d "$sketches" ]; then cp -f "$sketches"/*.obj "$corpus/fuzz_curve_graph/"; fi
 
 export ASAN_OPTIONS=detect_leaks=0
 for harness in "${harnesses[@]}"; do
@@ -44,9 +51,9 @@ for harness in "${harnesses[@]}"; do
 done
 
 # The harnesses are single-threaded: run them side by side, each for the given
-# wall time, so the run takes SECONDS rather than six times as long. The
+# wall time, so the run takes SECONDS rather than seven times as long. The
 # slowest inputs take ~15 s on a whole core: 90 s per input leaves room for
-# sharing two cores six ways and still stops a real hang.
+# sharing two cores seven ways and still stops a real hang.
 echo "fuzz: ${harnesses[*]} side by side for ${seconds}s each"
 pids=()
 for harness in "${harnesses[@]}"; do
