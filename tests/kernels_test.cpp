@@ -283,6 +283,18 @@ ck::DomainSides domainSides(const RegularDomain &domain) {
   return sides;
 }
 
+/// kCount random points strictly inside `domain`, coordinates into u and v.
+void randomInteriorPoints(const RegularDomain &domain, std::mt19937_64 &rng, std::vector<double> &u,
+                          std::vector<double> &v) {
+  std::uniform_real_distribution<double> unit(-1, 1);
+  while (u.size() < kCount) {
+    const Vec2 q{unit(rng), unit(rng)};
+    bool inside = true;
+    for (int i = 0; i < domain.sides() && inside; ++i) inside = domain.perpendicularDistance(i, q.x, q.y).v > 0;
+    if (inside) u.push_back(q.x), v.push_back(q.y);
+  }
+}
+
 TEST(Kernels, DomainFramesAndBlendsAgreeAcrossWidthsAndWithDualArithmetic) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> unit(-1, 1);
@@ -290,12 +302,7 @@ TEST(Kernels, DomainFramesAndBlendsAgreeAcrossWidthsAndWithDualArithmetic) {
     const RegularDomain domain(n);
     const ck::DomainSides sides = domainSides(domain);
     std::vector<double> u, v;
-    while (u.size() < kCount) {
-      const Vec2 q{unit(rng), unit(rng)};
-      bool inside = true;
-      for (int i = 0; i < n && inside; ++i) inside = domain.perpendicularDistance(i, q.x, q.y).v > 0;
-      if (inside) u.push_back(q.x), v.push_back(q.y);
-    }
+    randomInteriorPoints(domain, rng, u, v);
     // The independent form: the domain's own frames and cornerProducts in Dual arithmetic.
     for (int exponent : {2, 3}) {
       std::vector<double> frameX(n * kCount), frameY(n * kCount), blend(3 * n * kCount);
@@ -349,12 +356,7 @@ TEST(Kernels, SweepGradientsAgreeAcrossWidthsAndWithTheDomainsImplicitDerivative
     const RegularDomain domain(n);
     const ck::DomainSides sides = domainSides(domain);
     std::vector<double> u, v;
-    while (u.size() < kCount) {
-      const Vec2 q{unit(rng), unit(rng)};
-      bool inside = true;
-      for (int i = 0; i < n && inside; ++i) inside = domain.perpendicularDistance(i, q.x, q.y).v > 0;
-      if (inside) u.push_back(q.x), v.push_back(q.y);
-    }
+    randomInteriorPoints(domain, rng, u, v);
     for (int side : {0, n - 1}) {
       std::vector<double> x(kCount), y(kCount), root(kCount), distance(kCount), du(kCount), dv(kCount);
       std::vector<double> expectedU(kCount), expectedV(kCount);

@@ -85,25 +85,27 @@ std::string shortNumber(double x, int digits) {
   return text;
 }
 
-/// f(b) − f(a) of coordinate d by composite Boole's rule over the slopes at
-/// the interval's nine evenly spaced parameters a + k h / 8: the samples'
-/// layout (kPerInterval) puts k = 0 … 4 at 0 … 4 and k = 8, 7, 6, 5 at 5 … 8.
-inline double booleDifference(const double *slopes, std::size_t dims, std::size_t d, double h) {
+/// Σ weight[k] · slope_k of coordinate d over the interval's nine evenly
+/// spaced parameters a + k h / 8: the samples' layout (kPerInterval) puts
+/// k = 0 … 4 at 0 … 4 and k = 8, 7, 6, 5 at 5 … 8.
+inline double weightedSlopes(const double *slopes, std::size_t dims, std::size_t d, const double (&weight)[9]) {
   constexpr int sample[9] = {0, 1, 2, 3, 4, 8, 7, 6, 5};
-  constexpr double weight[9] = {7, 32, 12, 32, 14, 32, 12, 32, 7};
   double sum = 0;
   for (int k = 0; k < 9; ++k) sum += weight[k] * slopes[static_cast<std::size_t>(sample[k]) * dims + d];
-  return h / 180 * sum;
+  return sum;
+}
+
+/// f(b) − f(a) of coordinate d by composite Boole's rule over those slopes.
+inline double booleDifference(const double *slopes, std::size_t dims, std::size_t d, double h) {
+  constexpr double weight[9] = {7, 32, 12, 32, 14, 32, 12, 32, 7};
+  return h / 180 * weightedSlopes(slopes, dims, d, weight);
 }
 
 /// The same difference by composite Simpson's rule on the same samples: its
 /// distance from Boole's estimates the quadrature error.
 inline double simpsonDifference(const double *slopes, std::size_t dims, std::size_t d, double h) {
-  constexpr int sample[9] = {0, 1, 2, 3, 4, 8, 7, 6, 5};
   constexpr double weight[9] = {1, 4, 2, 4, 2, 4, 2, 4, 1};
-  double sum = 0;
-  for (int k = 0; k < 9; ++k) sum += weight[k] * slopes[static_cast<std::size_t>(sample[k]) * dims + d];
-  return h / 24 * sum;
+  return h / 24 * weightedSlopes(slopes, dims, d, weight);
 }
 
 } // namespace
