@@ -558,13 +558,7 @@ void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bo
   constexpr std::size_t kBlock = 64;
   const int n = domain_.sides();
   const bool g2 = options_.scheme == Scheme::GregoryG2;
-  // Saturating cross parameters (crossReach_) take exact ribbons: the
-  // formula runs sample by sample then, and the tables' slopes would be
-  // its one difference from Surface::evaluate. The tables are built all the
-  // same, so that a side they cannot follow is the same input error on
-  // every batched path.
   const PatchTables *tables = useTables ? &this->tables() : nullptr;
-  if (g2 && reachLimited_) tables = nullptr;
   thread_local Scratch scratch;
   thread_local std::vector<RibbonJet> linearJets;
   thread_local std::vector<ParabolicJet> parabolicJets;
