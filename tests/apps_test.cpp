@@ -487,8 +487,9 @@ TEST(ConnectionCurves, FaceWithAHoleBecomesFourQuads) {
   std::printf("ring: G2 seam jump %.2e, reference deviation max %.3g%%\n", jump.maxJump, 100 * deviation->maxDeviation);
   // 0.30% with linear α, β along the sides; gregory-g2's quintic α, β blend
   // (which halves the deviation on the regular built-ins) gives 1.1% on
-  // these uneven quads. Bound: the figure measured, with margin.
-  EXPECT_LT(deviation->maxDeviation, 1.5e-2);
+  // these uneven quads, 1.5% with its ribbons' cross parameters saturated
+  // (Patch, cornerTaylorReach). Bound: the figure measured, with margin.
+  EXPECT_LT(deviation->maxDeviation, 1.6e-2);
 
   NetworkDescription bad = d;
   bad.faces[0].holes[0].pop_back(); // an open hole, named as such

@@ -191,6 +191,10 @@ private:
   void compositeRibbonBatch(std::size_t count, const T *const *s, const T *const *d, const T *const *blends,
                             const Emit &emit) const;
   DualVec3 gregoryG2(Dual u, Dual v) const;
+  /// The G² formula from every side's parameter, normalized corner blend and
+  /// parabolic jet there (value and gradient): the one form of it that
+  /// patches with a limited cross reach evaluate, pointwise and batched.
+  DualVec3 gregoryG2From(const Dual *side, const Dual *blend, const ParabolicJet *jet) const;
   /// Fills side i's parameter and corner i's blend with their gradients
   /// (value, ∂/∂u, ∂/∂v arrays) for samples [first, first + count).
   using SideBlendSource = std::function<void(int i, std::size_t first, std::size_t count, double *const s[3],
@@ -235,6 +239,12 @@ private:
   /// rearranged form; composite-ribbon: corners_ and endCorners_.
   std::vector<kernels::GregoryCorner> kernelCorners_, kernelEndCorners_;
   std::vector<kernels::GregoryCornerTerms> cornerTerms_;
+  /// G²: per ribbon, where its cross parameter d saturates (d ↦ r tanh(d / r),
+  /// see limitedCross in patch.cpp); 1 leaves d as it is. reachLimited_ when
+  /// any is below 1: the batched paths then take gregoryG2From, since the
+  /// kernels and the shared plans' corner weights know no reach.
+  std::vector<double> crossReach_;
+  bool reachLimited_ = false;
   SurfaceOptions options_;
 };
 

@@ -51,6 +51,7 @@ struct Vec3Array {
   double *c[3];
   void take(Scratch &s) { c[0] = s.take(), c[1] = s.take(), c[2] = s.take(); }
   void set(std::size_t k, const Vec3 &x) { c[0][k] = x.x, c[1][k] = x.y, c[2][k] = x.z; }
+  Vec3 get(std::size_t k) const { return {c[0][k], c[1][k], c[2][k]}; }
 };
 
 struct JetArrays {
@@ -422,6 +423,22 @@ void Patch::gregoryPositionsFrom(std::size_t count, const double *const *sideVal
       if (g2) in.C[i][c] = jets[6 + c];
     }
   }
+  if (g2 && reachLimited_) {
+    // Cross parameters that saturate (crossReach_) are the formula's own,
+    // not the kernel's: sample by sample, on the tables' ribbon values.
+    std::array<Dual, kMaxSides> sides, blends;
+    std::array<ParabolicJet, kMaxSides> ribbonJets;
+    for (std::size_t k = 0; k < count; ++k) {
+      for (int i = 0; i < n; ++i) {
+        sides[i] = in.s[i][k], blends[i] = in.blend[i][k];
+        ribbonJets[i].P = {in.P[i][0][k], in.P[i][1][k], in.P[i][2][k]};
+        ribbonJets[i].T = {in.T[i][0][k], in.T[i][1][k], in.T[i][2][k]};
+        ribbonJets[i].C = {in.C[i][0][k], in.C[i][1][k], in.C[i][2][k]};
+      }
+      out.set(k, gregoryG2From(sides.data(), blends.data(), ribbonJets.data()).v);
+    }
+    return;
+  }
   if (g2 && cornerWeights) {
     for (int i = 0; i < n; ++i) in.weights[i] = cornerWeights[i];
     in.weightStride = weightStride;
@@ -601,6 +618,21 @@ void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bo
       }
     }
 
+    if (g2 && reachLimited_) {
+      // As in gregoryPositionsFrom: saturating cross parameters, sample by sample.
+      std::array<Dual, kMaxSides> sides, blends;
+      std::array<ParabolicJet, kMaxSides> ribbonJets;
+      for (std::size_t k = 0; k < m; ++k) {
+        for (int i = 0; i < n; ++i) {
+          sides[i] = {side[i].v[k], side[i].du[k], side[i].dv[k]};
+          blends[i] = {blend[i].v[k], blend[i].du[k], blend[i].dv[k]};
+          ribbonJets[i] = {jets[i].P.get(k), jets[i].dP.get(k), jets[i].T.get(k), jets[i].dT.get(k), jets[i].C.get(k),
+                   jets[i].dC.get(k)};
+        }
+        out[first + k] = gregoryG2From(sides.data(), blends.data(), ribbonJets.data());
+      }
+      continue;
+    }
     // The Gregory formula (eqs. 16–18, 22) with its derivatives in one kernel pass.
     kernels::GregoryJetSamples in;
     in.values.sides = n, in.values.parabolic = g2;

@@ -523,6 +523,18 @@ std::vector<double> LinearRibbon::breakpoints() const {
   return out;
 }
 
+double ParabolicRibbon::cornerTaylorReach(bool atStart, double tolerance) const {
+  constexpr int kSteps = 20;
+  const SideEndData &end = atStart ? start_ : end_;
+  const double bound = tolerance * norm(end.T);
+  for (int k = 1; k <= kSteps; ++k) {
+    const double step = double(k) / kSteps, x = atStart ? step : -step;
+    const Vec3 expanded = end.C + end.dC * x + end.ddC * (0.5 * x * x);
+    if (0.5 * norm(expanded - at(atStart ? step : 1 - step).C) > bound) return double(k - 1) / kSteps;
+  }
+  return 1.0;
+}
+
 std::vector<double> ParabolicRibbon::breakpoints() const {
   std::vector<double> out = linear_.breakpoints();
   const auto &pieces = linear_.pieces();

@@ -277,6 +277,16 @@ public:
   /// linear ribbon's and the transversal curvatures' breakpoints.
   std::vector<double> breakpoints() const;
 
+  /// How far along the side (in s, from the end at s = 0 or s = 1) the
+  /// second-order Taylor expansion of C at that end stays within
+  /// `tolerance` |T| of C itself (½ |ΔC| ≤ tolerance |T(end)|, checked at
+  /// twenty steps of 0.05; 1 when it holds over the whole side). The
+  /// correction patch extrapolates exactly that expansion (W₂₀ … W₂₂ hold
+  /// C, C', C'' of the end) across the face; a curvature bump close to an
+  /// end (C'' in the hundreds where C stays below one) makes it reach far
+  /// while the ribbon itself does not.
+  double cornerTaylorReach(bool atStart, double tolerance) const;
+
 private:
   ParabolicJet jet(double s, const std::array<Vec3, 4> &curve) const;
   LinearRibbon linear_;
@@ -312,9 +322,15 @@ private:
 /// `saddle-nodes` fold but multiplies the deviation of `pentagon` by
 /// 3.8–4.6 (any change of the twists does: 0.28 % for half of it, 0.46 %
 /// for all) and folds 8 of the 1° corpus faces. None of this unfolds
-/// `pocket3sided.lop`, which still folds with every corner term made equal
-/// (its parabolic ribbons themselves reach too far: |C| up to 269 at a
-/// corner of a face about 100 across).
+/// `pocket3sided.lop`, which still folds with every corner term made equal.
+/// What folds is the correction patch, not the ribbons: at the worst point
+/// of a sphere-dodecahedron face with tangents turned by 3° (corners not
+/// blended) the ribbons stay within 0.1–0.8 of their corner (face about 0.7
+/// across) while Q reaches 2–4.4, its W₂₂ term alone 1.8–4.3 (C'' = 260–420
+/// at corners where |C| < 2: a curvature bump within 5 % of the side's
+/// end). The patch therefore also limits how far each ribbon's cross
+/// parameter goes by how far its neighbours' corner expansions hold
+/// (cornerTaylorReach).
 std::vector<ParabolicRibbon> matchCornerTerms(std::vector<LinearRibbon> &linear,
                                               const std::function<ParabolicRibbon(const LinearRibbon &)> &build);
 
