@@ -163,12 +163,8 @@ template <bool Jets, class D> HWY_INLINE void compositeBody(D d, std::size_t k, 
 } // namespace
 
 void CompositeRibbon(std::size_t count, const CompositeArgs &args, bool jets, bool reference) {
-  auto run = [&](auto tag) {
-    if (jets) forEachVector(tag, count, [&](auto d, std::size_t k) { compositeBody<true>(d, k, args); });
-    else forEachVector(tag, count, [&](auto d, std::size_t k) { compositeBody<false>(d, k, args); });
-  };
-  if (reference) run(hn::CappedTag<double, 1>());
-  else run(hn::ScalableTag<double>());
+  if (jets) forEachVectorOrReference(reference, count, [&](auto d, std::size_t k) { compositeBody<true>(d, k, args); });
+  else forEachVectorOrReference(reference, count, [&](auto d, std::size_t k) { compositeBody<false>(d, k, args); });
 }
 
 } // namespace HWY_NAMESPACE

@@ -111,12 +111,9 @@ template <bool Gradients, class D> HWY_INLINE void blendBody(D d, std::size_t k,
 }
 
 void CornerBlends(std::size_t count, const BlendArgs &args, bool reference) {
-  auto run = [&](auto tag) {
-    if (args.blendDu) forEachVector(tag, count, [&](auto d, std::size_t k) { blendBody<true>(d, k, args); });
-    else forEachVector(tag, count, [&](auto d, std::size_t k) { blendBody<false>(d, k, args); });
-  };
-  if (reference) run(hn::CappedTag<double, 1>());
-  else run(hn::ScalableTag<double>());
+  if (args.blendDu) forEachVectorOrReference(reference, count,
+      [&](auto d, std::size_t k) { blendBody<true>(d, k, args); });
+  else forEachVectorOrReference(reference, count, [&](auto d, std::size_t k) { blendBody<false>(d, k, args); });
 }
 
 } // namespace HWY_NAMESPACE

@@ -139,12 +139,9 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t 
 }
 
 void GregoryPositions(std::size_t count, const GregoryArgs &args, bool reference) {
-  auto run = [&](auto tag) {
-    if (args.in->parabolic) forEachVector(tag, count, [&](auto d, std::size_t k) { gregoryBody<true>(d, k, args); });
-    else forEachVector(tag, count, [&](auto d, std::size_t k) { gregoryBody<false>(d, k, args); });
-  };
-  if (reference) run(hn::CappedTag<double, 1>());
-  else run(hn::ScalableTag<double>());
+  if (args.in->parabolic) forEachVectorOrReference(reference, count,
+      [&](auto d, std::size_t k) { gregoryBody<true>(d, k, args); });
+  else forEachVectorOrReference(reference, count, [&](auto d, std::size_t k) { gregoryBody<false>(d, k, args); });
 }
 
 /// The weights of samples [k, end) in vectors of d's width (a loop of its

@@ -206,13 +206,9 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
 }
 
 void GregoryJets(std::size_t count, const GregoryJetArgs &args, bool reference) {
-  auto run = [&](auto tag) {
-    if (args.in->values.parabolic)
-      forEachVector(tag, count, [&](auto d, std::size_t k) { gregoryJetBody<true>(d, k, args); });
-    else forEachVector(tag, count, [&](auto d, std::size_t k) { gregoryJetBody<false>(d, k, args); });
-  };
-  if (reference) run(hn::CappedTag<double, 1>());
-  else run(hn::ScalableTag<double>());
+  if (args.in->values.parabolic) forEachVectorOrReference(reference, count,
+      [&](auto d, std::size_t k) { gregoryJetBody<true>(d, k, args); });
+  else forEachVectorOrReference(reference, count, [&](auto d, std::size_t k) { gregoryJetBody<false>(d, k, args); });
 }
 
 } // namespace HWY_NAMESPACE

@@ -26,6 +26,14 @@ template <class D, class Body> HWY_INLINE void forEachVector(D d, std::size_t co
   for (; k < count; ++k) body(one, k);
 }
 
+/// forEachVector at one lane when `reference` (the scalar reference each
+/// kernel keeps beside its SIMD form; kernels_test holds them together) or
+/// at the target's full width.
+template <class Body> HWY_INLINE void forEachVectorOrReference(bool reference, std::size_t count, const Body &body) {
+  if (reference) forEachVector(hwy::HWY_NAMESPACE::CappedTag<double, 1>(), count, body);
+  else forEachVector(hwy::HWY_NAMESPACE::ScalableTag<double>(), count, body);
+}
+
 } // namespace HWY_NAMESPACE
 } // namespace kernels_impl
 } // namespace curvenet
