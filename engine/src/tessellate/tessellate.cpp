@@ -333,6 +333,14 @@ void prepareMesh(const Surface &surface, const Layout &layout, bool partial, boo
     mesh.positions.resize(layout.vertexCount);
     mesh.normals.resize(layout.vertexCount);
     if (record) mesh.domainPoints.resize(layout.vertexCount);
+    else mesh.domainPoints.clear();
+    // A reused mesh (tessellate into a Mesh): the boundary samples a full
+    // pass leaves alone — those of segments no face borders, normals no face
+    // owns — read as in a fresh mesh. Every face-interior sample is written.
+    const std::size_t boundary = layout.faceBase.empty() ? layout.vertexCount : layout.faceBase.front();
+    std::fill_n(mesh.positions.begin(), boundary, Vec3{});
+    std::fill_n(mesh.normals.begin(), boundary, Vec3{});
+    if (record) std::fill_n(mesh.domainPoints.begin(), boundary, MeshDomainPoint{});
   }
 }
 
@@ -406,26 +414,38 @@ void evaluatePlannedInteriors(const Surface &surface, const Layout &layout, cons
   std::size_t total = 0;
   const std::vector<Tile> tiles = planTiles(surface, layout.faceResolution, plans, total, wanted);
   forEachTile(tiles, total, [&](const Tile &tile) {
-    thread_local std::vector<DualVec3> values;
     const Patch &patch = *SurfaceAccess::patch(surface, tile.face);
     const EvaluationPlan &plan = *plans[tile.face];
     const std::size_t count = tile.samples.count;
-    values.resize(count);
     for (int m = 0; m < tile.samples.members; ++m) {
       const std::size_t first = tile.samples.first + m * tile.samples.stride;
-      patch.evaluatePlanned(plan, first, count, values.data());
-      for (std::size_t k = 0; k < count; ++k) {
-        const std::uint32_t id = layout.faceBase[tile.face] + static_cast<std::uint32_t>(first + k);
-        const DualVec3 &p = values[k];
-        const Vec2 uv = plan.samples()[first + k];
-        Vec3 normal = cross(p.du, p.dv);
-        // Degenerate only where Surface::evaluate takes the limit from inside.
-        if (squaredNorm(normal) <= 1e-24 * squaredNorm(p.du) * squaredNorm(p.dv))
-          normal = surface.evaluate(tile.face, uv).normal;
-        mesh.positions[id] = p.v + origin;
-        mesh.normals[id] = normalized(normal);
-        if (record) mesh.domainPoints[id] = {tile.face, uv};
-      }
+      // Each block of the jet pass goes straight from the kernel's arrays
+      // into the mesh: the point with the origin, the unit normal.
+      patch.evaluatePlanned(plan, first, count, [&](std::size_t at, std::size_t size, const double *const r[9]) {
+        const std::size_t id = layout.faceBase[tile.face] + first + at;
+        double *position = &mesh.positions[id].x, *unit = &mesh.normals[id].x;
+        bool degenerate = false;
+        for (std::size_t k = 0; k < size; ++k) {
+          const double ux = r[3][k], uy = r[4][k], uz = r[5][k], vx = r[6][k], vy = r[7][k], vz = r[8][k];
+          const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+          const double size2 = nx * nx + ny * ny + nz * nz;
+          // Degenerate only where Surface::evaluate takes the limit from inside (below).
+          degenerate |= size2 <= 1e-24 * (ux * ux + uy * uy + uz * uz) * (vx * vx + vy * vy + vz * vz);
+          const double length = std::sqrt(size2);
+          const double scale = length > 0 ? length : 1.0; // normalized(): zero stays zero
+          position[3 * k] = r[0][k] + origin.x, position[3 * k + 1] = r[1][k] + origin.y,
+          position[3 * k + 2] = r[2][k] + origin.z;
+          unit[3 * k] = nx / scale, unit[3 * k + 1] = ny / scale, unit[3 * k + 2] = nz / scale;
+        }
+        if (degenerate)
+          for (std::size_t k = 0; k < size; ++k) {
+            const Vec3 du{r[3][k], r[4][k], r[5][k]}, dv{r[6][k], r[7][k], r[8][k]};
+            if (squaredNorm(cross(du, dv)) <= 1e-24 * squaredNorm(du) * squaredNorm(dv))
+              mesh.normals[id + k] = surface.evaluate(tile.face, plan.samples()[first + at + k]).normal;
+          }
+        if (record)
+          for (std::size_t k = 0; k < size; ++k) mesh.domainPoints[id + k] = {tile.face, plan.samples()[first + at + k]};
+      });
       progress.advance(count);
     }
   });
@@ -765,6 +785,15 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
   Mesh mesh;
   tessellateInto(surface, options, makeLayout(surface, options.resolution), nullptr, mesh);
   return mesh;
+}
+
+void tessellate(const Surface &surface, const TessellationOptions &options, Mesh &mesh) {
+  if (options.tolerance > 0) {
+    mesh = tessellateToTolerance(surface, options, nullptr);
+    return;
+  }
+  checkResolution(surface, options.resolution);
+  tessellateInto(surface, options, makeLayout(surface, options.resolution), nullptr, mesh);
 }
 
 Mesh tessellate(const Surface &surface, const TessellationOptions &options, TessellationReport &report) {
