@@ -149,13 +149,16 @@ EvaluationPlan::EvaluationPlan(const PlanKey &key) : key_(key) {
   // Side 0's parameter values (every side's when perSide_) and corner 0's
   // blend values as plain arrays for the position-only path: side i's over
   // a rotation run are side 0's over the rotated run (sideValuesFrom).
+  // The Gregory schemes then keep values and gradients as separate arrays
+  // alone (the jet pass's sidesAndBlends reads them with vector loads).
   if (!cr) {
-    const int stored = perSide_ ? n : 1;
-    sideValues_.resize(static_cast<std::size_t>(stored) * count), blendValues_.resize(count);
-    parallel::parallelFor(0, stored, [&](int i) {
-      for (std::size_t k = 0; k < count; ++k) sideValues_[static_cast<std::size_t>(i) * count + k] = sideValue(i, k);
-    });
-    for (std::size_t k = 0; k < count; ++k) blendValues_[k] = b_[k].v;
+    const std::size_t stored = s_.size();
+    sideValues_.resize(stored), sideDu_.resize(stored), sideDv_.resize(stored);
+    blendValues_.resize(count), blendDu_.resize(count), blendDv_.resize(count);
+    for (std::size_t j = 0; j < stored; ++j) sideValues_[j] = s_[j].v, sideDu_[j] = s_[j].du, sideDv_[j] = s_[j].dv;
+    for (std::size_t k = 0; k < count; ++k) blendValues_[k] = b_[k].v, blendDu_[k] = b_[k].du, blendDv_[k] = b_[k].dv;
+    std::vector<Dual>().swap(s_), std::vector<Dual>().swap(b_);
+    soa_ = true;
   }
 }
 
@@ -171,13 +174,27 @@ std::size_t EvaluationPlan::rotationRun(std::size_t k) const {
   return interiorBase_ + ((k - interiorBase_) / perTriangle_ + 1) * perTriangle_ - k;
 }
 
+namespace {
+/// (v, du, dv) with the gradient turned by (cos, sin) = (c, t), into
+/// (ov, ou, ow). Restrict-qualified parameters (GCC ignores the qualifier on
+/// locals): without them the loop needs more alias checks than GCC versions
+/// for and stays scalar. Not split into a memcpy of the values and a loop
+/// over the gradients (two passes, and a call per block).
+__attribute__((optimize("no-tree-loop-distribute-patterns"))) void turnArrays(std::size_t count, double c, double t, const double *__restrict v, const double *__restrict du,
+                const double *__restrict dv, double *__restrict ov, double *__restrict ou, double *__restrict ow) {
+  for (std::size_t k = 0; k < count; ++k) ov[k] = v[k], ou[k] = c * du[k] - t * dv[k], ow[k] = t * du[k] + c * dv[k];
+}
+} // namespace
+
 void EvaluationPlan::sidesAndBlends(int i, std::size_t first, std::size_t count, double *const s[3],
                                     double *const blend[3]) const {
   // Locals throughout: the output arrays could alias the plan's members as
   // far as the compiler knows, which would reload every member per sample.
+  CURVENET_CHECK(soa_, "sidesAndBlends on a composite-ribbon plan");
   const double c = cos_[i], t = sin_[i];
   const std::uint32_t *from = rotation_.data() + static_cast<std::size_t>(i) * size() + first;
-  const Dual *sides = s_.data(), *blends = b_.data();
+  const double *sideV = sideValues_.data(), *sideU = sideDu_.data(), *sideW = sideDv_.data();
+  const double *blendV = blendValues_.data(), *blendU = blendDu_.data(), *blendW = blendDv_.data();
   double *sv = s[0], *su = s[1], *sw = s[2], *bv = blend[0], *bu = blend[1], *bw = blend[2];
   // Within one centre–side triangle interior the rotation is a shift by
   // whole triangles (the constructor's layout): plain loads of consecutive
@@ -189,27 +206,24 @@ void EvaluationPlan::sidesAndBlends(int i, std::size_t first, std::size_t count,
   if (interior && first + count <= interiorBase + (triangle + 1) * perTriangle) {
     const std::size_t local = first - interiorBase - triangle * perTriangle;
     const std::size_t rotated = interiorBase + ((triangle + n - i) % n) * perTriangle + local;
-    const Dual *x = sides + (perSide_ ? static_cast<std::size_t>(i) * size() + first : rotated);
-    const Dual *y = blends + rotated;
+    const std::size_t x = perSide_ ? static_cast<std::size_t>(i) * size() + first : rotated;
     const double cs = perSide_ ? 1.0 : c, ts = perSide_ ? 0.0 : t;
-    for (std::size_t k = 0; k < count; ++k)
-      sv[k] = x[k].v, su[k] = cs * x[k].du - ts * x[k].dv, sw[k] = ts * x[k].du + cs * x[k].dv;
-    for (std::size_t k = 0; k < count; ++k)
-      bv[k] = y[k].v, bu[k] = c * y[k].du - t * y[k].dv, bw[k] = t * y[k].du + c * y[k].dv;
+    turnArrays(count, cs, ts, sideV + x, sideU + x, sideW + x, sv, su, sw);
+    turnArrays(count, c, t, blendV + rotated, blendU + rotated, blendW + rotated, bv, bu, bw);
     return;
   }
   if (perSide_) {
-    const Dual *own = sides + static_cast<std::size_t>(i) * size() + first;
-    for (std::size_t k = 0; k < count; ++k) sv[k] = own[k].v, su[k] = own[k].du, sw[k] = own[k].dv;
+    const std::size_t own = static_cast<std::size_t>(i) * size() + first;
+    turnArrays(count, 1.0, 0.0, sideV + own, sideU + own, sideW + own, sv, su, sw);
   } else {
     for (std::size_t k = 0; k < count; ++k) {
-      const Dual x = sides[from[k]];
-      sv[k] = x.v, su[k] = c * x.du - t * x.dv, sw[k] = t * x.du + c * x.dv;
+      const std::uint32_t j = from[k];
+      sv[k] = sideV[j], su[k] = c * sideU[j] - t * sideW[j], sw[k] = t * sideU[j] + c * sideW[j];
     }
   }
   for (std::size_t k = 0; k < count; ++k) {
-    const Dual x = blends[from[k]];
-    bv[k] = x.v, bu[k] = c * x.du - t * x.dv, bw[k] = t * x.du + c * x.dv;
+    const std::uint32_t j = from[k];
+    bv[k] = blendV[j], bu[k] = c * blendU[j] - t * blendW[j], bw[k] = t * blendU[j] + c * blendW[j];
   }
 }
 
@@ -228,7 +242,10 @@ std::vector<EvaluationPlan::Group> EvaluationPlan::groups(std::size_t maxCount) 
 
 std::size_t EvaluationPlan::memory() const {
   return samples_.size() * sizeof(Vec2) + (s_.size() + d_.size() + b_.size()) * sizeof(Dual) +
-         rotation_.size() * sizeof(std::uint32_t) + (sideValues_.size() + blendValues_.size()) * sizeof(double);
+         rotation_.size() * sizeof(std::uint32_t) +
+         (sideValues_.size() + blendValues_.size() + sideDu_.size() + sideDv_.size() + blendDu_.size() +
+          blendDv_.size()) *
+             sizeof(double);
 }
 
 namespace {
