@@ -111,6 +111,14 @@ public:
   /// normals straight from the kernel's arrays (no DualVec3 copy between).
   void evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::size_t count,
                        const JetBlockSink &out) const;
+  /// Domain side i's boundary samples j[0 … count − 1] of `plan` (t = j / r
+  /// along the side: EvaluationPlan::boundarySidesAndBlends, which needs
+  /// hasBoundary()) with exact first derivatives, into a sink: the
+  /// tessellator's boundary normals without solving their sweeps (on a
+  /// side, the neighbouring sides' roots lie at the ends of [0, 1], where
+  /// the batched solver falls back to its robust search).
+  void evaluatePlannedBoundary(const EvaluationPlan &plan, int i, const std::uint32_t *j, std::size_t count,
+                               const JetBlockSink &out) const;
   /// Positions alone of the same samples into out[c][k] (c = x, y, z):
   /// Gregory schemes through tables() and one SIMD kernel pass
   /// (kernels::gregoryPositions); composite-ribbon through evaluatePlanned.

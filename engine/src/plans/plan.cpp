@@ -160,6 +160,45 @@ EvaluationPlan::EvaluationPlan(const PlanKey &key) : key_(key) {
     std::vector<Dual>().swap(s_), std::vector<Dual>().swap(b_);
     soa_ = true;
   }
+  // Side 0's boundary samples, as Patch::evaluate computes them (sweeps by
+  // hermiteSweepSides, blends in product form) at the tessellator's points.
+  if (!cr && !perSide_) {
+    boundary_.resize(static_cast<std::size_t>(r + 1) * n * 2);
+    const bool g2 = key.scheme == Scheme::GregoryG2;
+    const Vec2 p0 = domain.corner(0), p1 = domain.corner(1);
+    std::array<Dual, 8> side, power, product;
+    for (int j = 0; j <= r; ++j) {
+      const double t = double(j) / r; // boundaryRows' t on a one-segment side
+      const Vec2 uv = p0 + (p1 - p0) * t;
+      const Dual u = Dual::u(uv.x), v = Dual::vCoord(uv.y);
+      if (key.sweepline == Sweepline::Radial)
+        for (int k = 0; k < n; ++k) side[k] = domain.radialSideParameter(k, u, v);
+      else domain.hermiteSweepSides(u, v, key.sweepline == Sweepline::QuinticHermite, std::span<Dual>(side.data(), n));
+      for (int k = 0; k < n; ++k) {
+        const Dual distance = domain.perpendicularDistance(k, u, v);
+        power[k] = g2 ? distance * distance * distance : distance * distance;
+      }
+      const Dual total = domain.cornerProducts(power, product);
+      for (int k = 0; k < n; ++k) {
+        boundary_[2 * (static_cast<std::size_t>(j) * n + k)] = side[k];
+        boundary_[2 * (static_cast<std::size_t>(j) * n + k) + 1] = product[k] / total;
+      }
+    }
+  }
+}
+
+void EvaluationPlan::boundarySidesAndBlends(int i, int k, const std::uint32_t *j, std::size_t count,
+                                            double *const s[3], double *const blend[3]) const {
+  CURVENET_CHECK(hasBoundary(), "boundary samples of a plan without them");
+  const int n = key_.sides;
+  const std::size_t from = static_cast<std::size_t>(((k - i) % n + n) % n); // side k on side i's row: side k − i on side 0's
+  const double c = cos_[i], t = sin_[i];
+  for (std::size_t q = 0; q < count; ++q) {
+    const Dual *at = boundary_.data() + 2 * (static_cast<std::size_t>(j[q]) * n + from);
+    const Dual x = at[0], y = at[1];
+    s[0][q] = x.v, s[1][q] = c * x.du - t * x.dv, s[2][q] = t * x.du + c * x.dv;
+    blend[0][q] = y.v, blend[1][q] = c * y.du - t * y.dv, blend[2][q] = t * y.du + c * y.dv;
+  }
 }
 
 std::size_t EvaluationPlan::rotationRun(std::size_t k) const {
@@ -241,7 +280,7 @@ std::vector<EvaluationPlan::Group> EvaluationPlan::groups(std::size_t maxCount) 
 }
 
 std::size_t EvaluationPlan::memory() const {
-  return samples_.size() * sizeof(Vec2) + (s_.size() + d_.size() + b_.size()) * sizeof(Dual) +
+  return samples_.size() * sizeof(Vec2) + (s_.size() + d_.size() + b_.size() + boundary_.size()) * sizeof(Dual) +
          rotation_.size() * sizeof(std::uint32_t) +
          (sideValues_.size() + blendValues_.size() + sideDu_.size() + sideDv_.size() + blendDu_.size() +
           blendDv_.size()) *

@@ -78,6 +78,17 @@ public:
   /// value, ∂/∂u, ∂/∂v of each into s[0 .. 2][j], blend[0 .. 2][j], j = k − first.
   void sidesAndBlends(int i, std::size_t first, std::size_t count, double *const s[3], double *const blend[3]) const;
 
+  /// The tessellator's boundary rows of a uniform layout: every side's
+  /// parameter and every corner's blend with their gradients at the samples
+  /// t = j / r (j = 0 … r) of domain side 0, side i's rows by rotation.
+  /// Gregory schemes with a rotated plan (not perSide(), not
+  /// composite-ribbon); empty otherwise.
+  bool hasBoundary() const { return !boundary_.empty(); }
+  /// For domain side i's samples j[0 … count − 1]: side k's parameter and
+  /// corner k's blend, as sidesAndBlends gives them for interior samples.
+  void boundarySidesAndBlends(int i, int k, const std::uint32_t *j, std::size_t count, double *const s[3],
+                              double *const blend[3]) const;
+
   /// Samples that the rotations permute among themselves: `members` ranges
   /// of `count` samples, member m being [first + m·stride, first + m·stride
   /// + count), where side i's and corner i's data on member m are side 0's
@@ -113,6 +124,9 @@ private:
   std::vector<std::uint32_t> rotation_;
   std::vector<double> sideValues_, blendValues_;
   std::vector<double> sideDu_, sideDv_, blendDu_, blendDv_;
+  /// hasBoundary(): side 0's boundary sample j, side (corner) k at
+  /// boundary_[2 (j n + k)] (parameter) and the next entry (blend).
+  std::vector<Dual> boundary_;
   bool soa_ = false;
   std::vector<double> cos_, sin_;
   bool perSide_ = false;

@@ -363,48 +363,99 @@ void writeBoundaryPositions(const Network &net, const Layout &layout, const Face
 /// Boundary normals from the lowest-numbered face that shows each point
 /// (deterministic): owners first, in face order, then the owners' normals in
 /// parallel, each point evaluated by one fixed face whatever the thread count.
+/// With plans (`planned`), a face side sampled as a uniform layout samples
+/// it (t = j / r, one segment) takes its geometry-free data from the face's
+/// plan (Patch::evaluatePlannedBoundary); other sides, and every side
+/// without plans, solve their sweeps (Surface::evaluate on a batch).
 void evaluateBoundaryNormals(const Surface &surface, const Layout &layout, const BoundaryRows &rows,
-                             const FaceSelection &wanted, bool record, Mesh &mesh) {
+                             const FaceSelection &wanted, bool planned, bool record, Mesh &mesh) {
   struct BoundaryNormal {
     std::uint32_t id;
-    int face;
+    int face, side; ///< side: the domain side of a planned point, −1 for the others
+    std::uint32_t index; ///< planned: j of t = j / r
     Vec2 domain;
   };
   std::vector<BoundaryNormal> boundary;
+  std::vector<std::shared_ptr<const EvaluationPlan>> plans(static_cast<std::size_t>(surface.faceCount()));
   {
     std::vector<char> hasNormal(layout.vertexCount, 0);
-    for (int f = 0; f < surface.faceCount(); ++f)
-      for (const auto &row : rows[f])
-        for (const RowPoint &p : row)
-          if (!hasNormal[p.id]) {
-            hasNormal[p.id] = 1;
-            if (wanted(f)) boundary.push_back({p.id, f, p.domain}); // else owned by a face kept as it was
-          }
+    for (int f = 0; f < surface.faceCount(); ++f) {
+      const int r = layout.faceResolution[f];
+      if (wanted(f) && planned && r >= 2) {
+        plans[f] = evaluationPlan(planKey(surface.faceOptions(f), surface.domainSides(f), r));
+        if (!plans[f]->hasBoundary()) plans[f] = nullptr;
+      }
+      // The face's planned points side by side, then the others (corners
+      // among them: there the formula's corner terms meet their singular
+      // limit, which the pointwise evaluation takes at the exact corner).
+      std::vector<BoundaryNormal> others;
+      for (int i = 0; i < static_cast<int>(rows[f].size()); ++i) {
+        const auto &row = rows[f][i];
+        bool uniform = plans[f] && row.size() == static_cast<std::size_t>(r) + 1;
+        for (std::size_t q = 0; uniform && q < row.size(); ++q) uniform = row[q].t == double(q) / r;
+        for (std::size_t q = 0; q < row.size(); ++q) {
+          const RowPoint &p = row[q];
+          if (hasNormal[p.id]) continue;
+          hasNormal[p.id] = 1;
+          if (!wanted(f)) continue; // owned by a face kept as it was
+          const bool fromPlan = uniform && q > 0 && q + 1 < row.size();
+          (fromPlan ? boundary : others).push_back({p.id, f, fromPlan ? i : -1, static_cast<std::uint32_t>(q), p.domain});
+        }
+      }
+      boundary.insert(boundary.end(), others.begin(), others.end());
+    }
   }
-  // Batches of one face's boundary points (`boundary` lists them face by
-  // face) through the batched evaluation: a point's normal depends only on
-  // its face's run and its place in it, never on the threads, and a
-  // re-tessellation sees the same runs.
+  // Batches of one face's boundary points (one face side's when planned;
+  // `boundary` lists them face by face) through the batched evaluation: a
+  // point's normal depends only on its batch and its place in it, never on
+  // the threads, and a re-tessellation sees the same batches.
   constexpr std::size_t kBoundaryBatch = 1024;
   std::vector<std::pair<std::size_t, std::size_t>> batches;
   for (std::size_t begin = 0; begin < boundary.size();) {
     std::size_t end = begin;
-    while (end < boundary.size() && end - begin < kBoundaryBatch && boundary[end].face == boundary[begin].face) ++end;
+    const BoundaryNormal &head = boundary[begin];
+    while (end < boundary.size() && end - begin < kBoundaryBatch && boundary[end].face == head.face &&
+           boundary[end].side == head.side)
+      ++end;
     batches.push_back({begin, end});
     begin = end;
   }
   parallel::parallelFor(std::size_t{0}, batches.size(), [&](std::size_t item) {
     const auto [begin, end] = batches[item];
-    thread_local std::vector<Vec2> uv;
-    thread_local std::vector<SurfacePoint> points;
-    uv.resize(end - begin), points.resize(end - begin);
-    for (std::size_t k = begin; k < end; ++k) uv[k - begin] = boundary[k].domain;
-    surface.evaluate(boundary[begin].face, uv, points);
-    for (std::size_t k = begin; k < end; ++k) {
-      const BoundaryNormal &b = boundary[k];
-      mesh.normals[b.id] = points[k - begin].normal;
-      if (record) mesh.domainPoints[b.id] = {b.face, b.domain};
+    const BoundaryNormal &head = boundary[begin];
+    const std::size_t count = end - begin;
+    if (head.side >= 0) {
+      thread_local std::vector<std::uint32_t> index;
+      index.resize(count);
+      for (std::size_t k = begin; k < end; ++k) index[k - begin] = boundary[k].index;
+      SurfaceAccess::patch(surface, head.face)
+          ->evaluatePlannedBoundary(*plans[head.face], head.side, index.data(), count,
+                                    [&](std::size_t at, std::size_t size, const double *const r[9]) {
+                                      for (std::size_t k = 0; k < size; ++k) {
+                                        const BoundaryNormal &b = boundary[begin + at + k];
+                                        const Vec3 point{r[0][k], r[1][k], r[2][k]};
+                                        const Vec3 du{r[3][k], r[4][k], r[5][k]}, dv{r[6][k], r[7][k], r[8][k]};
+                                        const Vec3 normal = cross(du, dv);
+                                        const double size2 = squaredNorm(normal);
+                                        // As Surface::evaluate on a batch: the pointwise evaluation decides
+                                        // where the derivatives are parallel or the formula failed.
+                                        mesh.normals[b.id] =
+                                            size2 > 1e-24 * squaredNorm(du) * squaredNorm(dv) && isFinite(point) &&
+                                                    std::isfinite(size2)
+                                                ? normalized(normal)
+                                                : surface.evaluate(b.face, b.domain).normal;
+                                      }
+                                    });
+    } else {
+      thread_local std::vector<Vec2> uv;
+      thread_local std::vector<SurfacePoint> points;
+      uv.resize(count), points.resize(count);
+      for (std::size_t k = begin; k < end; ++k) uv[k - begin] = boundary[k].domain;
+      surface.evaluate(head.face, uv, points);
+      for (std::size_t k = begin; k < end; ++k) mesh.normals[boundary[k].id] = points[k - begin].normal;
     }
+    if (record)
+      for (std::size_t k = begin; k < end; ++k) mesh.domainPoints[boundary[k].id] = {boundary[k].face, boundary[k].domain};
   });
 }
 
@@ -618,8 +669,8 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
   parallel::parallelFor(0, faces, [&](int f) { rows[f] = boundaryRows(surface, layout, f); });
 
   writeBoundaryPositions(surface.network(), layout, wanted, mesh);
-  evaluateBoundaryNormals(surface, layout, rows, wanted, record, mesh);
   const bool planned = options.usePlans && faces > 0 && SurfaceAccess::patch(surface, 0) != nullptr;
+  evaluateBoundaryNormals(surface, layout, rows, wanted, planned, record, mesh);
   if (planned) evaluatePlannedInteriors(surface, layout, wanted, record, progress, mesh);
 
   // Triangles per fan sector: the sectors of a face are independent (their
