@@ -619,7 +619,10 @@ void zipSector(const Surface &surface, const Layout &layout, const BoundaryRows 
   TriangleSink out{mesh.triangles.data() + destination, domains ? domains->data() + destination : nullptr,
                    sectors.count[item]};
   const Vec2 p0 = surface.domainCorner(f, i), p1 = surface.domainCorner(f, i + 1);
-  std::vector<RowPoint> lower = rows[f][i], upper;
+  // Domain points are wanted only for samples evaluated here or triangles' domains.
+  const bool wantDomains = !planned || domains;
+  thread_local std::vector<RowPoint> lower, upper;
+  lower.assign(rows[f][i].begin(), rows[f][i].end());
   std::uint32_t offset = interiorBase + static_cast<std::uint32_t>(i) * perTriangle;
   for (int k = 1; k <= r; ++k) {
     upper.clear();
@@ -628,11 +631,15 @@ void zipSector(const Surface &surface, const Layout &layout, const BoundaryRows 
     } else {
       const Vec2 a = p0 * (1.0 - double(k) / r), b = p1 * (1.0 - double(k) / r);
       const int m = r - k;
+      upper.resize(static_cast<std::size_t>(m) + 1);
       for (int j = 0; j <= m; ++j) {
         const std::uint32_t id = j == 0 ? spoke(i, k) : (j == m ? spoke(i + 1, k) : offset++);
-        const Vec2 uv = a + (b - a) * (double(j) / m);
-        if (j < m) place(id, uv); // the spoke at j = m belongs to the next fan triangle
-        upper.push_back({id, double(j) / m, uv});
+        RowPoint &point = upper[static_cast<std::size_t>(j)];
+        point.id = id, point.t = double(j) / m;
+        if (wantDomains) {
+          point.domain = a + (b - a) * (double(j) / m);
+          if (j < m) place(id, point.domain); // the spoke at j = m belongs to the next fan triangle
+        }
       }
     }
     zip(lower, upper, out);
