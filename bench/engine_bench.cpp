@@ -8,8 +8,9 @@
 //     domain points of face 0 (sweepline roots solved per point)
 //   BatchJets/<scheme>/<model>: the same points with du, dv and normals
 //     (Surface::evaluate on spans)
-//   TessellateCpu/<scheme>/<model>/r256/t1: the warm one-thread
-//     tessellation on CPU time (the others of its kind on wall time)
+//   TessellateCpu/<scheme>/<model>/r256/t1[/reused]: the warm one-thread
+//     tessellation on CPU time (the others of its kind on wall time); reused:
+//     into one Mesh kept across runs (tessellate(surface, options, mesh))
 //   Kernel<Name>/<width>
 // Each reports a points-per-second counter (items/s).
 #include <benchmark/benchmark.h>
@@ -38,12 +39,19 @@ const Surface &surfaceFor(const std::string &model, Scheme scheme) {
 }
 
 void tessellateBench(benchmark::State &state, Scheme scheme, std::string model, int resolution, bool cold,
-                     int threads) {
+                     int threads, bool reuse) {
   const Surface &surface = surfaceFor(model, scheme);
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   std::size_t points = 0;
+  Mesh reused;
   for (auto _ : state) {
     if (cold) clearEvaluationPlans();
+    if (reuse) {
+      tessellate(surface, {resolution, threads}, reused);
+      points = reused.positions.size();
+      benchmark::DoNotOptimize(reused.positions.data());
+      continue;
+    }
     const Mesh mesh = tessellate(surface, {resolution, threads});
     points = mesh.positions.size();
     benchmark::DoNotOptimize(mesh.positions.data());
@@ -282,7 +290,7 @@ int registerAll() {
           benchmark::RegisterBenchmark(("Tessellate/" + std::string(name) + "/pentagon/r" + std::to_string(r) + "/" +
                                         (cold ? "cold" : "warm") + "/t" + std::to_string(threads))
                                            .c_str(),
-                                       tessellateBench, scheme, std::string("pentagon"), r, cold, threads)
+                                       tessellateBench, scheme, std::string("pentagon"), r, cold, threads, false)
               ->Unit(benchmark::kMillisecond)
               ->UseRealTime();
     for (bool cold : {true, false})
@@ -302,7 +310,11 @@ int registerAll() {
     // One thread on CPU time: the rate of the work itself on a machine
     // shared with other jobs, where wall-clock rates fall with their load.
     benchmark::RegisterBenchmark(("TessellateCpu/" + std::string(name) + "/pentagon/r256/t1").c_str(), tessellateBench,
-                                 scheme, std::string("pentagon"), 256, false, 1)
+                                 scheme, std::string("pentagon"), 256, false, 1, false)
+        ->Unit(benchmark::kMillisecond);
+    // The same into one reused Mesh (no fresh pages to fault in).
+    benchmark::RegisterBenchmark(("TessellateCpu/" + std::string(name) + "/pentagon/r256/t1/reused").c_str(),
+                                 tessellateBench, scheme, std::string("pentagon"), 256, false, 1, true)
         ->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("SurfaceBuild/" + std::string(name) + "/ellipsoid-truncated-icosahedron").c_str(),
                                  surfaceBuildBench, scheme, std::string("ellipsoid-truncated-icosahedron"), 0)

@@ -244,6 +244,41 @@ TEST(PlannedTessellation, BytesDoNotDependOnThreads) {
   }
 }
 
+// tessellate into a Mesh that held something else (another surface, a
+// larger resolution, domain points, every value overwritten with garbage)
+// gives the bytes of a fresh tessellation: nothing of the old mesh survives.
+TEST(PlannedTessellation, ReusedMeshGivesTheBytesOfAFreshOne) {
+  const Surface other = Surface::build(Network::build(builtinNetwork("pentagon")), {Scheme::GregoryG1});
+  for (const char *name : {"pentagon", "torus-mixed"})
+    for (const SurfaceOptions &o : schemes()) {
+      if (name != std::string("pentagon") && o.scheme != Scheme::GregoryG2) continue; // several faces: one scheme
+      const Surface surface = Surface::build(Network::build(builtinNetwork(name)), o);
+      for (bool record : {false, true}) {
+        TessellationOptions options{20, 2, record};
+        Mesh reused = tessellate(other, {33, 1, !record});
+        std::fill(reused.positions.begin(), reused.positions.end(), Vec3{7, 7, 7});
+        std::fill(reused.normals.begin(), reused.normals.end(), Vec3{7, 7, 7});
+        std::fill(reused.triangles.begin(), reused.triangles.end(), std::array<std::uint32_t, 3>{7, 7, 7});
+        std::fill(reused.domainPoints.begin(), reused.domainPoints.end(), MeshDomainPoint{7, {7, 7}});
+        tessellate(surface, options, reused);
+        const Mesh fresh = tessellate(surface, options);
+        ASSERT_EQ(reused.positions.size(), fresh.positions.size()) << name << " " << label(o);
+        ASSERT_EQ(reused.normals.size(), fresh.normals.size());
+        ASSERT_EQ(reused.domainPoints.size(), fresh.domainPoints.size());
+        EXPECT_EQ(0, std::memcmp(reused.positions.data(), fresh.positions.data(), fresh.positions.size() * sizeof(Vec3)))
+            << name << " " << label(o);
+        EXPECT_EQ(0, std::memcmp(reused.normals.data(), fresh.normals.data(), fresh.normals.size() * sizeof(Vec3)))
+            << name << " " << label(o);
+        for (std::size_t k = 0; k < fresh.domainPoints.size(); ++k) {
+          EXPECT_EQ(reused.domainPoints[k].face, fresh.domainPoints[k].face);
+          EXPECT_EQ(reused.domainPoints[k].uv, fresh.domainPoints[k].uv);
+        }
+        EXPECT_EQ(reused.triangles, fresh.triangles);
+        EXPECT_EQ(reused.faceTriangleStart, fresh.faceTriangleStart);
+      }
+    }
+}
+
 // Progress reports come on the calling thread only (the callback needs no
 // locking), never decrease, start at 0 and end at exactly 1, and do not
 // change the mesh — on the planned and the pointwise path, with 2 threads.

@@ -108,6 +108,12 @@ std::string memoryShortfall(double bytes);
 /// inputs run serially. Memory: the mesh plus the plans (about 90 bytes per
 /// sample of each distinct (sides, resolution)). Thread-safe.
 Mesh tessellate(const Surface &surface, const TessellationOptions &options = {});
+/// tessellate() into `mesh`, reusing its storage: for repeated tessellation
+/// (a viewer re-meshing after every edit, a benchmark) without allocating,
+/// zeroing and faulting in a fresh mesh each time, which costs about as much
+/// as the normals. The result equals tessellate(surface, options) byte for
+/// byte, whatever `mesh` held before. Thread-safe for distinct meshes.
+void tessellate(const Surface &surface, const TessellationOptions &options, Mesh &mesh);
 /// The same with what it reached measured into `report`. Cost: with a
 /// tolerance, the uniform comparison tessellates and measures the uniform
 /// meshes of a bisection up to the largest face resolution (about log₂ of it

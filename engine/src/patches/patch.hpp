@@ -102,6 +102,23 @@ public:
   /// At plan resolutions from kTableResolution on, the ribbons come from
   /// tables() instead of exact evaluation (agreeing to ~1e-14 of their size).
   void evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::size_t count, DualVec3 *out) const;
+  /// Where a jet pass hands its results, block by block: block(at, m, jet)
+  /// for samples at … at + m − 1 (relative to the pass's first), jet[c][k]
+  /// with c = value x, y, z, ∂/∂u x, y, z, ∂/∂v x, y, z. The arrays are the
+  /// pass's scratch, valid during the call.
+  using JetBlockSink = std::function<void(std::size_t at, std::size_t count, const double *const jet[9])>;
+  /// evaluatePlanned into a sink: the tessellator writes its vertices and
+  /// normals straight from the kernel's arrays (no DualVec3 copy between).
+  void evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::size_t count,
+                       const JetBlockSink &out) const;
+  /// Domain side i's boundary samples j[0 … count − 1] of `plan` (t = j / r
+  /// along the side: EvaluationPlan::boundarySidesAndBlends, which needs
+  /// hasBoundary()) with exact first derivatives, into a sink: the
+  /// tessellator's boundary normals without solving their sweeps (on a
+  /// side, the neighbouring sides' roots lie at the ends of [0, 1], where
+  /// the batched solver falls back to its robust search).
+  void evaluatePlannedBoundary(const EvaluationPlan &plan, int i, const std::uint32_t *j, std::size_t count,
+                               const JetBlockSink &out) const;
   /// Positions alone of the same samples into out[c][k] (c = x, y, z):
   /// Gregory schemes through tables() and one SIMD kernel pass
   /// (kernels::gregoryPositions); composite-ribbon through evaluatePlanned.
@@ -203,6 +220,8 @@ private:
   /// corner blend: ribbons from the tables or exactly, then the kernel, in
   /// blocks small enough for their arrays to stay in the fast caches.
   void gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bool useTables, DualVec3 *out) const;
+  void gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bool useTables,
+                       const JetBlockSink &out) const;
   /// The same from arrays sides[i·count + k], blends[i·count + k].
   void gregoryJetsFrom(std::size_t count, const Dual *sides, const Dual *blends, bool useTables, DualVec3 *out) const;
   /// Throws unless `plan` was made for this patch's sides and scheme.

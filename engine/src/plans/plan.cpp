@@ -149,13 +149,55 @@ EvaluationPlan::EvaluationPlan(const PlanKey &key) : key_(key) {
   // Side 0's parameter values (every side's when perSide_) and corner 0's
   // blend values as plain arrays for the position-only path: side i's over
   // a rotation run are side 0's over the rotated run (sideValuesFrom).
+  // The Gregory schemes then keep values and gradients as separate arrays
+  // alone (the jet pass's sidesAndBlends reads them with vector loads).
   if (!cr) {
-    const int stored = perSide_ ? n : 1;
-    sideValues_.resize(static_cast<std::size_t>(stored) * count), blendValues_.resize(count);
-    parallel::parallelFor(0, stored, [&](int i) {
-      for (std::size_t k = 0; k < count; ++k) sideValues_[static_cast<std::size_t>(i) * count + k] = sideValue(i, k);
-    });
-    for (std::size_t k = 0; k < count; ++k) blendValues_[k] = b_[k].v;
+    const std::size_t stored = s_.size();
+    sideValues_.resize(stored), sideDu_.resize(stored), sideDv_.resize(stored);
+    blendValues_.resize(count), blendDu_.resize(count), blendDv_.resize(count);
+    for (std::size_t j = 0; j < stored; ++j) sideValues_[j] = s_[j].v, sideDu_[j] = s_[j].du, sideDv_[j] = s_[j].dv;
+    for (std::size_t k = 0; k < count; ++k) blendValues_[k] = b_[k].v, blendDu_[k] = b_[k].du, blendDv_[k] = b_[k].dv;
+    std::vector<Dual>().swap(s_), std::vector<Dual>().swap(b_);
+    soa_ = true;
+  }
+  // Side 0's boundary samples, as Patch::evaluate computes them (sweeps by
+  // hermiteSweepSides, blends in product form) at the tessellator's points.
+  if (!cr && !perSide_) {
+    boundary_.resize(static_cast<std::size_t>(r + 1) * n * 2);
+    const bool g2 = key.scheme == Scheme::GregoryG2;
+    const Vec2 p0 = domain.corner(0), p1 = domain.corner(1);
+    std::array<Dual, 8> side, power, product;
+    for (int j = 0; j <= r; ++j) {
+      const double t = double(j) / r; // boundaryRows' t on a one-segment side
+      const Vec2 uv = p0 + (p1 - p0) * t;
+      const Dual u = Dual::u(uv.x), v = Dual::vCoord(uv.y);
+      if (key.sweepline == Sweepline::Radial)
+        for (int k = 0; k < n; ++k) side[k] = domain.radialSideParameter(k, u, v);
+      else domain.hermiteSweepSides(u, v, key.sweepline == Sweepline::QuinticHermite, std::span<Dual>(side.data(), n));
+      for (int k = 0; k < n; ++k) {
+        const Dual distance = domain.perpendicularDistance(k, u, v);
+        power[k] = g2 ? distance * distance * distance : distance * distance;
+      }
+      const Dual total = domain.cornerProducts(power, product);
+      for (int k = 0; k < n; ++k) {
+        boundary_[2 * (static_cast<std::size_t>(j) * n + k)] = side[k];
+        boundary_[2 * (static_cast<std::size_t>(j) * n + k) + 1] = product[k] / total;
+      }
+    }
+  }
+}
+
+void EvaluationPlan::boundarySidesAndBlends(int i, int k, const std::uint32_t *j, std::size_t count,
+                                            double *const s[3], double *const blend[3]) const {
+  CURVENET_CHECK(hasBoundary(), "boundary samples of a plan without them");
+  const int n = key_.sides;
+  const std::size_t from = static_cast<std::size_t>(((k - i) % n + n) % n); // side k on side i's row: side k − i on side 0's
+  const double c = cos_[i], t = sin_[i];
+  for (std::size_t q = 0; q < count; ++q) {
+    const Dual *at = boundary_.data() + 2 * (static_cast<std::size_t>(j[q]) * n + from);
+    const Dual x = at[0], y = at[1];
+    s[0][q] = x.v, s[1][q] = c * x.du - t * x.dv, s[2][q] = t * x.du + c * x.dv;
+    blend[0][q] = y.v, blend[1][q] = c * y.du - t * y.dv, blend[2][q] = t * y.du + c * y.dv;
   }
 }
 
@@ -171,13 +213,27 @@ std::size_t EvaluationPlan::rotationRun(std::size_t k) const {
   return interiorBase_ + ((k - interiorBase_) / perTriangle_ + 1) * perTriangle_ - k;
 }
 
+namespace {
+/// (v, du, dv) with the gradient turned by (cos, sin) = (c, t), into
+/// (ov, ou, ow). Restrict-qualified parameters (GCC ignores the qualifier on
+/// locals): without them the loop needs more alias checks than GCC versions
+/// for and stays scalar. Not split into a memcpy of the values and a loop
+/// over the gradients (two passes, and a call per block).
+__attribute__((optimize("no-tree-loop-distribute-patterns"))) void turnArrays(std::size_t count, double c, double t, const double *__restrict v, const double *__restrict du,
+                const double *__restrict dv, double *__restrict ov, double *__restrict ou, double *__restrict ow) {
+  for (std::size_t k = 0; k < count; ++k) ov[k] = v[k], ou[k] = c * du[k] - t * dv[k], ow[k] = t * du[k] + c * dv[k];
+}
+} // namespace
+
 void EvaluationPlan::sidesAndBlends(int i, std::size_t first, std::size_t count, double *const s[3],
                                     double *const blend[3]) const {
   // Locals throughout: the output arrays could alias the plan's members as
   // far as the compiler knows, which would reload every member per sample.
+  CURVENET_CHECK(soa_, "sidesAndBlends on a composite-ribbon plan");
   const double c = cos_[i], t = sin_[i];
   const std::uint32_t *from = rotation_.data() + static_cast<std::size_t>(i) * size() + first;
-  const Dual *sides = s_.data(), *blends = b_.data();
+  const double *sideV = sideValues_.data(), *sideU = sideDu_.data(), *sideW = sideDv_.data();
+  const double *blendV = blendValues_.data(), *blendU = blendDu_.data(), *blendW = blendDv_.data();
   double *sv = s[0], *su = s[1], *sw = s[2], *bv = blend[0], *bu = blend[1], *bw = blend[2];
   // Within one centre–side triangle interior the rotation is a shift by
   // whole triangles (the constructor's layout): plain loads of consecutive
@@ -189,27 +245,24 @@ void EvaluationPlan::sidesAndBlends(int i, std::size_t first, std::size_t count,
   if (interior && first + count <= interiorBase + (triangle + 1) * perTriangle) {
     const std::size_t local = first - interiorBase - triangle * perTriangle;
     const std::size_t rotated = interiorBase + ((triangle + n - i) % n) * perTriangle + local;
-    const Dual *x = sides + (perSide_ ? static_cast<std::size_t>(i) * size() + first : rotated);
-    const Dual *y = blends + rotated;
+    const std::size_t x = perSide_ ? static_cast<std::size_t>(i) * size() + first : rotated;
     const double cs = perSide_ ? 1.0 : c, ts = perSide_ ? 0.0 : t;
-    for (std::size_t k = 0; k < count; ++k)
-      sv[k] = x[k].v, su[k] = cs * x[k].du - ts * x[k].dv, sw[k] = ts * x[k].du + cs * x[k].dv;
-    for (std::size_t k = 0; k < count; ++k)
-      bv[k] = y[k].v, bu[k] = c * y[k].du - t * y[k].dv, bw[k] = t * y[k].du + c * y[k].dv;
+    turnArrays(count, cs, ts, sideV + x, sideU + x, sideW + x, sv, su, sw);
+    turnArrays(count, c, t, blendV + rotated, blendU + rotated, blendW + rotated, bv, bu, bw);
     return;
   }
   if (perSide_) {
-    const Dual *own = sides + static_cast<std::size_t>(i) * size() + first;
-    for (std::size_t k = 0; k < count; ++k) sv[k] = own[k].v, su[k] = own[k].du, sw[k] = own[k].dv;
+    const std::size_t own = static_cast<std::size_t>(i) * size() + first;
+    turnArrays(count, 1.0, 0.0, sideV + own, sideU + own, sideW + own, sv, su, sw);
   } else {
     for (std::size_t k = 0; k < count; ++k) {
-      const Dual x = sides[from[k]];
-      sv[k] = x.v, su[k] = c * x.du - t * x.dv, sw[k] = t * x.du + c * x.dv;
+      const std::uint32_t j = from[k];
+      sv[k] = sideV[j], su[k] = c * sideU[j] - t * sideW[j], sw[k] = t * sideU[j] + c * sideW[j];
     }
   }
   for (std::size_t k = 0; k < count; ++k) {
-    const Dual x = blends[from[k]];
-    bv[k] = x.v, bu[k] = c * x.du - t * x.dv, bw[k] = t * x.du + c * x.dv;
+    const std::uint32_t j = from[k];
+    bv[k] = blendV[j], bu[k] = c * blendU[j] - t * blendW[j], bw[k] = t * blendU[j] + c * blendW[j];
   }
 }
 
@@ -227,8 +280,11 @@ std::vector<EvaluationPlan::Group> EvaluationPlan::groups(std::size_t maxCount) 
 }
 
 std::size_t EvaluationPlan::memory() const {
-  return samples_.size() * sizeof(Vec2) + (s_.size() + d_.size() + b_.size()) * sizeof(Dual) +
-         rotation_.size() * sizeof(std::uint32_t) + (sideValues_.size() + blendValues_.size()) * sizeof(double);
+  return samples_.size() * sizeof(Vec2) + (s_.size() + d_.size() + b_.size() + boundary_.size()) * sizeof(Dual) +
+         rotation_.size() * sizeof(std::uint32_t) +
+         (sideValues_.size() + blendValues_.size() + sideDu_.size() + sideDv_.size() + blendDu_.size() +
+          blendDv_.size()) *
+             sizeof(double);
 }
 
 namespace {

@@ -49,14 +49,14 @@ public:
     return {x.v, cos_[i] * x.du - sin_[i] * x.dv, sin_[i] * x.du + cos_[i] * x.dv};
   }
   Dual side(int i, std::size_t k) const {
-    return perSide_ ? s_[static_cast<std::size_t>(i) * size() + k] : turn(i, s_[rotated(i, k)]);
+    return perSide_ ? storedSide(static_cast<std::size_t>(i) * size() + k) : turn(i, storedSide(rotated(i, k)));
   }
   Dual distance(int i, std::size_t k) const { return turn(i, d_[rotated(i, k)]); }
   /// Values alone (no gradient turn), for position-only evaluation.
   double sideValue(int i, std::size_t k) const {
-    return perSide_ ? s_[static_cast<std::size_t>(i) * size() + k].v : s_[rotated(i, k)].v;
+    return perSide_ ? storedSide(static_cast<std::size_t>(i) * size() + k).v : storedSide(rotated(i, k)).v;
   }
-  double blendValue(int i, std::size_t k) const { return b_[rotated(i, k)].v; }
+  double blendValue(int i, std::size_t k) const { return storedBlend(rotated(i, k)).v; }
   double distanceValue(int i, std::size_t k) const { return d_[rotated(i, k)].v; }
   /// The samples from k on that every rotation maps to consecutive samples
   /// (the rest of k's piece of the layout: the centre, a spoke or a triangle
@@ -73,10 +73,21 @@ public:
   bool perSide() const { return perSide_; }
   /// Gregory: corner i's normalized blend B_{i,i−1}; composite-ribbon: the
   /// normalized corner product D_{i,i−1} / Σ_j D_{j,j−1}.
-  Dual blend(int i, std::size_t k) const { return turn(i, b_[rotated(i, k)]); }
+  Dual blend(int i, std::size_t k) const { return turn(i, storedBlend(rotated(i, k))); }
   /// side(i, k) and blend(i, k) for k in [first, first + count) as arrays:
   /// value, ∂/∂u, ∂/∂v of each into s[0 .. 2][j], blend[0 .. 2][j], j = k − first.
   void sidesAndBlends(int i, std::size_t first, std::size_t count, double *const s[3], double *const blend[3]) const;
+
+  /// The tessellator's boundary rows of a uniform layout: every side's
+  /// parameter and every corner's blend with their gradients at the samples
+  /// t = j / r (j = 0 … r) of domain side 0, side i's rows by rotation.
+  /// Gregory schemes with a rotated plan (not perSide(), not
+  /// composite-ribbon); empty otherwise.
+  bool hasBoundary() const { return !boundary_.empty(); }
+  /// For domain side i's samples j[0 … count − 1]: side k's parameter and
+  /// corner k's blend, as sidesAndBlends gives them for interior samples.
+  void boundarySidesAndBlends(int i, int k, const std::uint32_t *j, std::size_t count, double *const s[3],
+                              double *const blend[3]) const;
 
   /// Samples that the rotations permute among themselves: `members` ranges
   /// of `count` samples, member m being [first + m·stride, first + m·stride
@@ -100,11 +111,23 @@ public:
   std::size_t memory() const;
 
 private:
+  /// Stored side parameter j (side-major when perSide_) and corner-0 blend j.
+  Dual storedSide(std::size_t j) const { return soa_ ? Dual{sideValues_[j], sideDu_[j], sideDv_[j]} : s_[j]; }
+  Dual storedBlend(std::size_t j) const { return soa_ ? Dual{blendValues_[j], blendDu_[j], blendDv_[j]} : b_[j]; }
+
   PlanKey key_;
   std::vector<Vec2> samples_;
+  /// Composite-ribbon: the stored parameters as Duals. The Gregory schemes
+  /// keep them as arrays of values and of gradients (soa_): the jet pass
+  /// reads them with plain vector loads (sidesAndBlends).
   std::vector<Dual> s_, d_, b_;
   std::vector<std::uint32_t> rotation_;
   std::vector<double> sideValues_, blendValues_;
+  std::vector<double> sideDu_, sideDv_, blendDu_, blendDv_;
+  /// hasBoundary(): side 0's boundary sample j, side (corner) k at
+  /// boundary_[2 (j n + k)] (parameter) and the next entry (blend).
+  std::vector<Dual> boundary_;
+  bool soa_ = false;
   std::vector<double> cos_, sin_;
   bool perSide_ = false;
   /// The layout: centre and spokes below interiorBase_, then n centre–side

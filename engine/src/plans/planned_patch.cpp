@@ -41,6 +41,12 @@ struct Scratch {
   }
 };
 
+/// Sample k of jet arrays r[c] (value, ∂/∂u, ∂/∂v; x, y, z each: JetBlockSink).
+void setJet(double *const r[9], std::size_t k, const DualVec3 &p) {
+  r[0][k] = p.v.x, r[1][k] = p.v.y, r[2][k] = p.v.z, r[3][k] = p.du.x, r[4][k] = p.du.y, r[5][k] = p.du.z;
+  r[6][k] = p.dv.x, r[7][k] = p.dv.y, r[8][k] = p.dv.z;
+}
+
 struct DualArray {
   double *v, *du, *dv;
   void take(Scratch &s) { v = s.take(), du = s.take(), dv = s.take(); }
@@ -523,6 +529,29 @@ void Patch::evaluatePositions(std::size_t count, const double *u, const double *
   }
 }
 
+void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::size_t count,
+                            const JetBlockSink &out) const {
+  if (options_.scheme == Scheme::CompositeRibbon) {
+    // The CR formula's own batch (DualVec3), handed on as one block of arrays.
+    thread_local std::vector<DualVec3> values;
+    thread_local std::vector<double> arrays;
+    values.resize(count), arrays.resize(9 * count);
+    evaluatePlanned(plan, first, count, values.data());
+    double *jet[9];
+    for (int c = 0; c < 9; ++c) jet[c] = arrays.data() + c * count;
+    for (std::size_t k = 0; k < count; ++k) setJet(jet, k, values[k]);
+    out(0, count, jet);
+    return;
+  }
+  checkPlan(plan);
+  gregoryJetsFrom(
+      count,
+      [&](int i, std::size_t block, std::size_t m, double *const s[3], double *const b[3]) {
+        plan.sidesAndBlends(i, first + block, m, s, b);
+      },
+      plan.key().resolution >= kTableResolution, out);
+}
+
 void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::size_t count, DualVec3 *out) const {
   checkPlan(plan);
   const int n = domain_.sides();
@@ -552,6 +581,14 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
 }
 
 void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bool useTables, DualVec3 *out) const {
+  gregoryJetsFrom(count, source, useTables, [out](std::size_t at, std::size_t m, const double *const r[9]) {
+    for (std::size_t k = 0; k < m; ++k)
+      out[at + k] = {{r[0][k], r[1][k], r[2][k]}, {r[3][k], r[4][k], r[5][k]}, {r[6][k], r[7][k], r[8][k]}};
+  });
+}
+
+void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bool useTables,
+                            const JetBlockSink &out) const {
   // Blocks of 64 samples: the ribbons' values and slopes (up to 18 arrays
   // per side) then stay near the kernel (the L1 and L2 caches) between the
   // table pass and the kernel pass; whole tiles would spill them to L3.
@@ -629,8 +666,9 @@ void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bo
           ribbonJets[i] = {jets[i].P.get(k), jets[i].dP.get(k), jets[i].T.get(k), jets[i].dT.get(k), jets[i].C.get(k),
                    jets[i].dC.get(k)};
         }
-        out[first + k] = gregoryG2From(sides.data(), blends.data(), ribbonJets.data());
+        setJet(result, k, gregoryG2From(sides.data(), blends.data(), ribbonJets.data()));
       }
+      out(first, m, result);
       continue;
     }
     // The Gregory formula (eqs. 16–18, 22) with its derivatives in one kernel pass.
@@ -651,10 +689,7 @@ void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bo
                           {result[3], result[4], result[5]},
                           {result[6], result[7], result[8]}},
                          kernels::kBestWidth, g2 ? cornerTerms_.data() : nullptr);
-    for (std::size_t k = 0; k < m; ++k)
-      out[first + k] = {{result[0][k], result[1][k], result[2][k]},
-                        {result[3][k], result[4][k], result[5][k]},
-                        {result[6][k], result[7][k], result[8][k]}};
+    out(first, m, result);
   }
 }
 

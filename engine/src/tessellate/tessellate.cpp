@@ -20,6 +20,9 @@
 #include <string>
 
 #include <unistd.h>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 
 #include "bezier/bezier_surface.hpp"
 #include "curvenet/error.hpp"
@@ -333,6 +336,14 @@ void prepareMesh(const Surface &surface, const Layout &layout, bool partial, boo
     mesh.positions.resize(layout.vertexCount);
     mesh.normals.resize(layout.vertexCount);
     if (record) mesh.domainPoints.resize(layout.vertexCount);
+    else mesh.domainPoints.clear();
+    // A reused mesh (tessellate into a Mesh): the boundary samples a full
+    // pass leaves alone — those of segments no face borders, normals no face
+    // owns — read as in a fresh mesh. Every face-interior sample is written.
+    const std::size_t boundary = layout.faceBase.empty() ? layout.vertexCount : layout.faceBase.front();
+    std::fill_n(mesh.positions.begin(), boundary, Vec3{});
+    std::fill_n(mesh.normals.begin(), boundary, Vec3{});
+    if (record) std::fill_n(mesh.domainPoints.begin(), boundary, MeshDomainPoint{});
   }
 }
 
@@ -352,49 +363,140 @@ void writeBoundaryPositions(const Network &net, const Layout &layout, const Face
 /// Boundary normals from the lowest-numbered face that shows each point
 /// (deterministic): owners first, in face order, then the owners' normals in
 /// parallel, each point evaluated by one fixed face whatever the thread count.
+/// With plans (`planned`), a face side sampled as a uniform layout samples
+/// it (t = j / r, one segment) takes its geometry-free data from the face's
+/// plan (Patch::evaluatePlannedBoundary); other sides, and every side
+/// without plans, solve their sweeps (Surface::evaluate on a batch).
 void evaluateBoundaryNormals(const Surface &surface, const Layout &layout, const BoundaryRows &rows,
-                             const FaceSelection &wanted, bool record, Mesh &mesh) {
+                             const FaceSelection &wanted, bool planned, bool record, Mesh &mesh) {
   struct BoundaryNormal {
     std::uint32_t id;
-    int face;
+    int face, side; ///< side: the domain side of a planned point, −1 for the others
+    std::uint32_t index; ///< planned: j of t = j / r
     Vec2 domain;
   };
   std::vector<BoundaryNormal> boundary;
+  std::vector<std::shared_ptr<const EvaluationPlan>> plans(static_cast<std::size_t>(surface.faceCount()));
   {
     std::vector<char> hasNormal(layout.vertexCount, 0);
-    for (int f = 0; f < surface.faceCount(); ++f)
-      for (const auto &row : rows[f])
-        for (const RowPoint &p : row)
-          if (!hasNormal[p.id]) {
-            hasNormal[p.id] = 1;
-            if (wanted(f)) boundary.push_back({p.id, f, p.domain}); // else owned by a face kept as it was
-          }
+    for (int f = 0; f < surface.faceCount(); ++f) {
+      const int r = layout.faceResolution[f];
+      if (wanted(f) && planned && r >= 2) {
+        plans[f] = evaluationPlan(planKey(surface.faceOptions(f), surface.domainSides(f), r));
+        if (!plans[f]->hasBoundary()) plans[f] = nullptr;
+      }
+      // The face's planned points side by side, then the others (corners
+      // among them: there the formula's corner terms meet their singular
+      // limit, which the pointwise evaluation takes at the exact corner).
+      std::vector<BoundaryNormal> others;
+      for (int i = 0; i < static_cast<int>(rows[f].size()); ++i) {
+        const auto &row = rows[f][i];
+        bool uniform = plans[f] && row.size() == static_cast<std::size_t>(r) + 1;
+        for (std::size_t q = 0; uniform && q < row.size(); ++q) uniform = row[q].t == double(q) / r;
+        for (std::size_t q = 0; q < row.size(); ++q) {
+          const RowPoint &p = row[q];
+          if (hasNormal[p.id]) continue;
+          hasNormal[p.id] = 1;
+          if (!wanted(f)) continue; // owned by a face kept as it was
+          const bool fromPlan = uniform && q > 0 && q + 1 < row.size();
+          (fromPlan ? boundary : others).push_back({p.id, f, fromPlan ? i : -1, static_cast<std::uint32_t>(q), p.domain});
+        }
+      }
+      boundary.insert(boundary.end(), others.begin(), others.end());
+    }
   }
-  // Batches of one face's boundary points (`boundary` lists them face by
-  // face) through the batched evaluation: a point's normal depends only on
-  // its face's run and its place in it, never on the threads, and a
-  // re-tessellation sees the same runs.
+  // Batches of one face's boundary points (one face side's when planned;
+  // `boundary` lists them face by face) through the batched evaluation: a
+  // point's normal depends only on its batch and its place in it, never on
+  // the threads, and a re-tessellation sees the same batches.
   constexpr std::size_t kBoundaryBatch = 1024;
   std::vector<std::pair<std::size_t, std::size_t>> batches;
   for (std::size_t begin = 0; begin < boundary.size();) {
     std::size_t end = begin;
-    while (end < boundary.size() && end - begin < kBoundaryBatch && boundary[end].face == boundary[begin].face) ++end;
+    const BoundaryNormal &head = boundary[begin];
+    while (end < boundary.size() && end - begin < kBoundaryBatch && boundary[end].face == head.face &&
+           boundary[end].side == head.side)
+      ++end;
     batches.push_back({begin, end});
     begin = end;
   }
   parallel::parallelFor(std::size_t{0}, batches.size(), [&](std::size_t item) {
     const auto [begin, end] = batches[item];
-    thread_local std::vector<Vec2> uv;
-    thread_local std::vector<SurfacePoint> points;
-    uv.resize(end - begin), points.resize(end - begin);
-    for (std::size_t k = begin; k < end; ++k) uv[k - begin] = boundary[k].domain;
-    surface.evaluate(boundary[begin].face, uv, points);
-    for (std::size_t k = begin; k < end; ++k) {
-      const BoundaryNormal &b = boundary[k];
-      mesh.normals[b.id] = points[k - begin].normal;
-      if (record) mesh.domainPoints[b.id] = {b.face, b.domain};
+    const BoundaryNormal &head = boundary[begin];
+    const std::size_t count = end - begin;
+    if (head.side >= 0) {
+      thread_local std::vector<std::uint32_t> index;
+      index.resize(count);
+      for (std::size_t k = begin; k < end; ++k) index[k - begin] = boundary[k].index;
+      SurfaceAccess::patch(surface, head.face)
+          ->evaluatePlannedBoundary(*plans[head.face], head.side, index.data(), count,
+                                    [&](std::size_t at, std::size_t size, const double *const r[9]) {
+                                      for (std::size_t k = 0; k < size; ++k) {
+                                        const BoundaryNormal &b = boundary[begin + at + k];
+                                        const Vec3 point{r[0][k], r[1][k], r[2][k]};
+                                        const Vec3 du{r[3][k], r[4][k], r[5][k]}, dv{r[6][k], r[7][k], r[8][k]};
+                                        const Vec3 normal = cross(du, dv);
+                                        const double size2 = squaredNorm(normal);
+                                        // As Surface::evaluate on a batch: the pointwise evaluation decides
+                                        // where the derivatives are parallel or the formula failed.
+                                        mesh.normals[b.id] =
+                                            size2 > 1e-24 * squaredNorm(du) * squaredNorm(dv) && isFinite(point) &&
+                                                    std::isfinite(size2)
+                                                ? normalized(normal)
+                                                : surface.evaluate(b.face, b.domain).normal;
+                                      }
+                                    });
+    } else {
+      thread_local std::vector<Vec2> uv;
+      thread_local std::vector<SurfacePoint> points;
+      uv.resize(count), points.resize(count);
+      for (std::size_t k = begin; k < end; ++k) uv[k - begin] = boundary[k].domain;
+      surface.evaluate(head.face, uv, points);
+      for (std::size_t k = begin; k < end; ++k) mesh.normals[boundary[k].id] = points[k - begin].normal;
     }
+    if (record)
+      for (std::size_t k = begin; k < end; ++k) mesh.domainPoints[boundary[k].id] = {boundary[k].face, boundary[k].domain};
   });
+}
+
+/// Unit normals du × dv / |du × dv| of `count` jets (the jet arrays' ∂/∂u
+/// and ∂/∂v columns) into n[0..2]; returns how many are degenerate
+/// (|du × dv|² ≤ 1e-24 |du|² |dv|²), whose normals the caller replaces.
+/// Two samples at a time in SSE2 registers (x86-64's baseline, which the
+/// engine is compiled for): GCC keeps a loop with std::sqrt scalar for
+/// errno's sake. Square roots and divisions round correctly in either form,
+/// so lanes and the scalar tail give the same bits as normalized(cross()).
+std::size_t unitNormals(std::size_t count, const double *ux, const double *uy, const double *uz, const double *vx,
+                        const double *vy, const double *vz, double *nx, double *ny, double *nz) {
+  std::size_t degenerate = 0, k = 0;
+#ifdef __SSE2__
+  const __m128d zero = _mm_setzero_pd(), limit = _mm_set1_pd(1e-24);
+  for (; k + 2 <= count; k += 2) {
+    const __m128d ax = _mm_loadu_pd(ux + k), ay = _mm_loadu_pd(uy + k), az = _mm_loadu_pd(uz + k);
+    const __m128d bx = _mm_loadu_pd(vx + k), by = _mm_loadu_pd(vy + k), bz = _mm_loadu_pd(vz + k);
+    const __m128d x = _mm_sub_pd(_mm_mul_pd(ay, bz), _mm_mul_pd(az, by));
+    const __m128d y = _mm_sub_pd(_mm_mul_pd(az, bx), _mm_mul_pd(ax, bz));
+    const __m128d z = _mm_sub_pd(_mm_mul_pd(ax, by), _mm_mul_pd(ay, bx));
+    const __m128d size2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(x, x), _mm_mul_pd(y, y)), _mm_mul_pd(z, z));
+    const __m128d a2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(ax, ax), _mm_mul_pd(ay, ay)), _mm_mul_pd(az, az));
+    const __m128d b2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(bx, bx), _mm_mul_pd(by, by)), _mm_mul_pd(bz, bz));
+    const int flat = _mm_movemask_pd(_mm_cmple_pd(size2, _mm_mul_pd(_mm_mul_pd(limit, a2), b2)));
+    degenerate += static_cast<std::size_t>((flat & 1) + (flat >> 1));
+    const __m128d length = _mm_sqrt_pd(size2);
+    // normalized(): a length not above zero (or NaN) gives the zero vector.
+    const __m128d positive = _mm_cmpgt_pd(length, zero);
+    _mm_storeu_pd(nx + k, _mm_and_pd(positive, _mm_div_pd(x, length)));
+    _mm_storeu_pd(ny + k, _mm_and_pd(positive, _mm_div_pd(y, length)));
+    _mm_storeu_pd(nz + k, _mm_and_pd(positive, _mm_div_pd(z, length)));
+  }
+#endif
+  for (; k < count; ++k) {
+    const Vec3 du{ux[k], uy[k], uz[k]}, dv{vx[k], vy[k], vz[k]}, n = cross(du, dv);
+    degenerate += squaredNorm(n) <= 1e-24 * squaredNorm(du) * squaredNorm(dv) ? 1 : 0;
+    const Vec3 unit = normalized(n);
+    nx[k] = unit.x, ny[k] = unit.y, nz[k] = unit.z;
+  }
+  return degenerate;
 }
 
 /// Face interiors through evaluation plans: the plans first (each distinct
@@ -406,26 +508,36 @@ void evaluatePlannedInteriors(const Surface &surface, const Layout &layout, cons
   std::size_t total = 0;
   const std::vector<Tile> tiles = planTiles(surface, layout.faceResolution, plans, total, wanted);
   forEachTile(tiles, total, [&](const Tile &tile) {
-    thread_local std::vector<DualVec3> values;
     const Patch &patch = *SurfaceAccess::patch(surface, tile.face);
     const EvaluationPlan &plan = *plans[tile.face];
     const std::size_t count = tile.samples.count;
-    values.resize(count);
     for (int m = 0; m < tile.samples.members; ++m) {
       const std::size_t first = tile.samples.first + m * tile.samples.stride;
-      patch.evaluatePlanned(plan, first, count, values.data());
-      for (std::size_t k = 0; k < count; ++k) {
-        const std::uint32_t id = layout.faceBase[tile.face] + static_cast<std::uint32_t>(first + k);
-        const DualVec3 &p = values[k];
-        const Vec2 uv = plan.samples()[first + k];
-        Vec3 normal = cross(p.du, p.dv);
-        // Degenerate only where Surface::evaluate takes the limit from inside.
-        if (squaredNorm(normal) <= 1e-24 * squaredNorm(p.du) * squaredNorm(p.dv))
-          normal = surface.evaluate(tile.face, uv).normal;
-        mesh.positions[id] = p.v + origin;
-        mesh.normals[id] = normalized(normal);
-        if (record) mesh.domainPoints[id] = {tile.face, uv};
-      }
+      // Each block of the jet pass goes straight from the kernel's arrays
+      // into the mesh: the point with the origin, the unit normal.
+      patch.evaluatePlanned(plan, first, count, [&](std::size_t at, std::size_t size, const double *const r[9]) {
+        const std::size_t id = layout.faceBase[tile.face] + first + at;
+        bool degenerate = false;
+        for (std::size_t from = 0; from < size; from += 64) {
+          const std::size_t block = std::min<std::size_t>(64, size - from);
+          alignas(64) double n[3][64];
+          degenerate |= unitNormals(block, r[3] + from, r[4] + from, r[5] + from, r[6] + from, r[7] + from, r[8] + from,
+                                    n[0], n[1], n[2]) > 0;
+          Vec3 *position = mesh.positions.data() + id + from, *unit = mesh.normals.data() + id + from;
+          for (std::size_t k = 0; k < block; ++k) {
+            position[k] = {r[0][from + k] + origin.x, r[1][from + k] + origin.y, r[2][from + k] + origin.z};
+            unit[k] = {n[0][k], n[1][k], n[2][k]};
+          }
+        }
+        if (degenerate)
+          for (std::size_t k = 0; k < size; ++k) {
+            const Vec3 du{r[3][k], r[4][k], r[5][k]}, dv{r[6][k], r[7][k], r[8][k]};
+            if (squaredNorm(cross(du, dv)) <= 1e-24 * squaredNorm(du) * squaredNorm(dv))
+              mesh.normals[id + k] = surface.evaluate(tile.face, plan.samples()[first + at + k]).normal;
+          }
+        if (record)
+          for (std::size_t k = 0; k < size; ++k) mesh.domainPoints[id + k] = {tile.face, plan.samples()[first + at + k]};
+      });
       progress.advance(count);
     }
   });
@@ -507,7 +619,10 @@ void zipSector(const Surface &surface, const Layout &layout, const BoundaryRows 
   TriangleSink out{mesh.triangles.data() + destination, domains ? domains->data() + destination : nullptr,
                    sectors.count[item]};
   const Vec2 p0 = surface.domainCorner(f, i), p1 = surface.domainCorner(f, i + 1);
-  std::vector<RowPoint> lower = rows[f][i], upper;
+  // Domain points are wanted only for samples evaluated here or triangles' domains.
+  const bool wantDomains = !planned || domains;
+  thread_local std::vector<RowPoint> lower, upper;
+  lower.assign(rows[f][i].begin(), rows[f][i].end());
   std::uint32_t offset = interiorBase + static_cast<std::uint32_t>(i) * perTriangle;
   for (int k = 1; k <= r; ++k) {
     upper.clear();
@@ -516,11 +631,15 @@ void zipSector(const Surface &surface, const Layout &layout, const BoundaryRows 
     } else {
       const Vec2 a = p0 * (1.0 - double(k) / r), b = p1 * (1.0 - double(k) / r);
       const int m = r - k;
+      upper.resize(static_cast<std::size_t>(m) + 1);
       for (int j = 0; j <= m; ++j) {
         const std::uint32_t id = j == 0 ? spoke(i, k) : (j == m ? spoke(i + 1, k) : offset++);
-        const Vec2 uv = a + (b - a) * (double(j) / m);
-        if (j < m) place(id, uv); // the spoke at j = m belongs to the next fan triangle
-        upper.push_back({id, double(j) / m, uv});
+        RowPoint &point = upper[static_cast<std::size_t>(j)];
+        point.id = id, point.t = double(j) / m;
+        if (wantDomains) {
+          point.domain = a + (b - a) * (double(j) / m);
+          if (j < m) place(id, point.domain); // the spoke at j = m belongs to the next fan triangle
+        }
       }
     }
     zip(lower, upper, out);
@@ -557,8 +676,8 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
   parallel::parallelFor(0, faces, [&](int f) { rows[f] = boundaryRows(surface, layout, f); });
 
   writeBoundaryPositions(surface.network(), layout, wanted, mesh);
-  evaluateBoundaryNormals(surface, layout, rows, wanted, record, mesh);
   const bool planned = options.usePlans && faces > 0 && SurfaceAccess::patch(surface, 0) != nullptr;
+  evaluateBoundaryNormals(surface, layout, rows, wanted, planned, record, mesh);
   if (planned) evaluatePlannedInteriors(surface, layout, wanted, record, progress, mesh);
 
   // Triangles per fan sector: the sectors of a face are independent (their
@@ -765,6 +884,15 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options) {
   Mesh mesh;
   tessellateInto(surface, options, makeLayout(surface, options.resolution), nullptr, mesh);
   return mesh;
+}
+
+void tessellate(const Surface &surface, const TessellationOptions &options, Mesh &mesh) {
+  if (options.tolerance > 0) {
+    mesh = tessellateToTolerance(surface, options, nullptr);
+    return;
+  }
+  checkResolution(surface, options.resolution);
+  tessellateInto(surface, options, makeLayout(surface, options.resolution), nullptr, mesh);
 }
 
 Mesh tessellate(const Surface &surface, const TessellationOptions &options, TessellationReport &report) {
