@@ -149,12 +149,15 @@ TEST(Embed, JetBatchesAgreeWithPointwiseEvaluationOnEveryBuiltin) {
     expectBatchesAgreeWithPointwise(info.name, schemes,
                                     [&](const SurfaceOptions &options) { return Model::build(description, options); });
   }
-  // A real network whose gregory-g2 ribbons saturate: the 3-sided pocket.
+}
+
+TEST(Embed, JetBatchesAgreeWithPointwiseEvaluationOnARealNetworkWhoseRibbonsSaturate) {
+  // The 3-sided pocket: gregory-g2 saturates its ribbons' cross parameters.
   // (The public sketches saturate too, but their largest curvature terms
   // take the tables' slope error of 1e-10 to 5e-10 of the derivatives.)
   const std::filesystem::path pocket =
       std::filesystem::path(CURVENET_SHARED_DATA_DIR) / "transfinite-models" / "pocket3sided.lop";
-  if (!std::filesystem::exists(pocket)) GTEST_SKIP() << pocket << " absent: the built-ins alone were compared";
+  if (!std::filesystem::exists(pocket)) GTEST_SKIP() << pocket << " absent (shared data)";
   expectBatchesAgreeWithPointwise(pocket.filename().string(), {{.scheme = Scheme::GregoryG2}},
                                   [&](const SurfaceOptions &options) { return Model::load(pocket.string(), options); });
 }
