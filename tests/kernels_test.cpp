@@ -201,12 +201,13 @@ namespace {
 /// [0, 1], ribbon values and corner vectors in [−2, 2], and a sample at
 /// corner 1 (s_1 = 0, s_0 = 1: the rational weights' limit) and one very
 /// near it (the batch inversion's underflow fallback). With `shares`, the
-/// corners take blend shares 1, 0 and random ones in between.
+/// corners take blend shares 1, 0 and random ones in between; with
+/// `reaches` (G²), the ribbons saturating reaches (saturatingReaches).
 struct RandomGregoryInput {
   Soa s, blend, P, T, C;
   ck::GregorySamples in;
   std::vector<ck::GregoryCorner> corners;
-  RandomGregoryInput(int n, bool parabolic, std::mt19937_64 &rng, bool shares = false)
+  RandomGregoryInput(int n, bool parabolic, std::mt19937_64 &rng, bool shares = false, bool reaches = false)
       : s(n, kCount), blend(n, kCount), P(3 * n, kCount, &rng), T(3 * n, kCount, &rng), C(3 * n, kCount, &rng),
         corners(n) {
     std::uniform_real_distribution<double> unit(0, 1), u(-2, 2);
@@ -223,8 +224,19 @@ struct RandomGregoryInput {
         for (double &x : v) x = u(rng);
     if (shares)
       for (int i = 0; i < n; ++i) in.blendShare[i] = i == 0 ? 1.0 : i == 1 ? 0.0 : unit(rng);
+    if (reaches) saturatingReaches(n, rng, in.reach);
+  }
+  /// Ribbon reaches as the engine takes them (0.05 … 1, 1 meaning none):
+  /// ribbon 0 at the floor, ribbon 1 unsaturated, the rest random, so that
+  /// corners see both, one or neither of their ribbons saturate.
+  static void saturatingReaches(int n, std::mt19937_64 &rng, double *reach) {
+    std::uniform_real_distribution<double> unit(0.05, 1.2);
+    for (int i = 0; i < n; ++i) reach[i] = i == 0 ? 0.05 : i == 1 ? 1.0 : std::min(unit(rng), 1.0);
   }
 };
+
+/// A saturated cross parameter r tanh(d / r) (r ≥ 1: d), the engine's formula.
+double saturated(double d, double reach) { return reach >= 1 ? d : reach * std::tanh(d / reach); }
 
 /// The two-ribbon blend's weight t^m / (s^m + t^m) of R_{i−1} at a corner
 /// (m = 3 for G², 2 for G¹), ½ at the corner.
@@ -239,15 +251,18 @@ std::array<double, 3> gregoryFormula(const ck::GregorySamples &in, const ck::Gre
   const int n = in.sides;
   for (int i = 0; i < n; ++i) {
     const int prev = (i + n - 1) % n;
+    // The blends take the sweep's (s, t); the ribbons' distances and the
+    // correction patch the saturated pair (sc, tc) (G² only).
     const double s = in.s[i][k], t = 1 - in.s[prev][k], b = in.blend[i][k];
+    const double sc = in.parabolic ? saturated(s, in.reach[prev]) : s, tc = in.parabolic ? saturated(t, in.reach[i]) : t;
     const double(*v)[3] = corners[i].v;
     auto w = [](double x, double y) { return x + y == 0 ? 0.5 : x / (x + y); };
     for (int c = 0; c < 3; ++c) {
-      double left = in.P[prev][c][k] + s * in.T[prev][c][k], right = in.P[i][c][k] + t * in.T[i][c][k];
+      double left = in.P[prev][c][k] + sc * in.T[prev][c][k], right = in.P[i][c][k] + tc * in.T[i][c][k];
       double q = v[0][c];
       if (in.parabolic) {
-        left += 0.5 * s * s * in.C[prev][c][k], right += 0.5 * t * t * in.C[i][c][k];
-        const double sp[4] = {1, s, s * s, s * s * s}, tp[4] = {1, t, t * t, t * t * t};
+        left += 0.5 * sc * sc * in.C[prev][c][k], right += 0.5 * tc * tc * in.C[i][c][k];
+        const double sp[4] = {1, sc, sc * sc, sc * sc * sc}, tp[4] = {1, tc, tc * tc, tc * tc * tc};
         int slot = 1;
         for (int p = 0; p <= 2; ++p)
           for (int r = 0; r <= 2; ++r) {
@@ -385,10 +400,10 @@ TEST(Kernels, SweepGradientsAgreeAcrossWidthsAndWithTheDomainsImplicitDerivative
 
 TEST(Kernels, GregoryPositionsAgreeAcrossWidthsAndWithTheFormula) {
   std::mt19937_64 rng(11);
-  for (int kind : {0, 1, 2, 3}) // G¹, G², G² and G¹ with blend shares
+  for (int kind : {0, 1, 2, 3, 4}) // G¹, G², G² and G¹ with blend shares, G² with shares and saturating reaches
     for (int n : {3, 5, 8}) {
-      const bool parabolic = kind == 1 || kind == 2;
-      RandomGregoryInput random(n, parabolic, rng, kind >= 2);
+      const bool parabolic = kind == 1 || kind == 2 || kind == 4;
+      RandomGregoryInput random(n, parabolic, rng, kind >= 2, kind == 4);
       const ck::GregorySamples &in = random.in;
       const std::vector<ck::GregoryCorner> &corners = random.corners;
       Soa reference(3, kCount);
@@ -457,6 +472,20 @@ TEST(Kernels, SharedG2CornerWeightsGiveTheSamePositions) {
       std::size_t mismatches = 0;
       for (size_t k = 0; k < 3 * kCount; ++k) mismatches += shared.data[k] != computed.data[k];
       EXPECT_EQ(mismatches, 0u) << w.name << " n=" << n;
+      // A corner whose ribbons saturate takes the weights of its saturated
+      // parameters, not the given ones (those of the sweep's own): here
+      // corners 0 and 1 (ribbon 0 saturates), the others unsaturated.
+      ck::GregorySamples saturated = in;
+      for (int i = 0; i < n; ++i) saturated.weights[i] = weights[8 * i], saturated.reach[i] = i == 0 ? 0.05 : 1.0;
+      Soa given(3, kCount), own(3, kCount);
+      double *g[3] = {given[0], given[1], given[2]}, *h[3] = {own[0], own[1], own[2]};
+      ck::gregoryPositions(kCount, saturated, corners.data(), g, w.id);
+      for (int i = 0; i < n; ++i) saturated.weights[i] = nullptr;
+      ck::gregoryPositions(kCount, saturated, corners.data(), h, w.id);
+      mismatches = 0;
+      for (size_t k = 0; k < 3 * kCount; ++k) mismatches += given.data[k] != own.data[k];
+      EXPECT_EQ(mismatches, 0u) << w.name << " n=" << n << " (saturated corners)";
+      EXPECT_GT(relativeDifference(own.data, computed.data), 1e-6) << "the reaches saturate";
     }
   }
 }
@@ -723,9 +752,11 @@ TEST(Kernels, GregoryJetsAgreeAcrossWidthsAndWithDualArithmetic) {
   // independent of the kernel's hand-derived derivatives.
   std::mt19937_64 rng(13);
   std::uniform_real_distribution<double> unit(0.02, 0.98), u(-2, 2);
-  for (int kind : {0, 1, 2, 3}) // G¹, G², G² and G¹ with blend shares 1, 0 and random ones
+  // G¹, G², G² and G¹ with blend shares 1, 0 and random ones, G² with shares
+  // and saturating reaches.
+  for (int kind : {0, 1, 2, 3, 4})
     for (int n : {3, 5, 8}) {
-      const bool parabolic = kind == 1 || kind == 2;
+      const bool parabolic = kind == 1 || kind == 2 || kind == 4;
       constexpr size_t count = 203;
       Soa s(3 * n, count), blend(3 * n, count), jets(18 * n, count, &rng);
       for (size_t a = 0; a < size_t(3 * n); ++a)
@@ -746,6 +777,13 @@ TEST(Kernels, GregoryJetsAgreeAcrossWidthsAndWithDualArithmetic) {
           for (double &x : v) x = u(rng);
       if (kind >= 2)
         for (int i = 0; i < n; ++i) in.values.blendShare[i] = i == 0 ? 1.0 : i == 1 ? 0.0 : unit(rng);
+      if (kind == 4) RandomGregoryInput::saturatingReaches(n, rng, in.values.reach);
+      // r tanh(d / r) in Dual arithmetic: the chain rule of Dual::apply.
+      auto saturate = [&](Dual d, double reach) {
+        if (reach >= 1) return d;
+        const double th = std::tanh(d.v / reach);
+        return d.apply(reach * th, 1 - th * th);
+      };
       auto vec = [](const double *p) { return Vec3{p[0], p[1], p[2]}; };
       std::vector<double> formula(9 * count);
       for (size_t k = 0; k < count; ++k) {
@@ -762,6 +800,7 @@ TEST(Kernels, GregoryJetsAgreeAcrossWidthsAndWithDualArithmetic) {
             return r;
           };
           const auto &v = corners[i].v;
+          const Dual sc = saturate(si, in.values.reach[prev]), tc = saturate(t, in.values.reach[i]);
           DualVec3 q;
           if (parabolic) {
             CornerData2 c{};
@@ -770,12 +809,12 @@ TEST(Kernels, GregoryJetsAgreeAcrossWidthsAndWithDualArithmetic) {
             for (int p = 0; p <= 2; ++p)
               for (int r = 0; r <= 2; ++r)
                 if (p || r) c.a[p][r] = vec(v[slot]), c.b[p][r] = vec(v[slot + 1]), slot += 2;
-            q = gregoryCorrection2(c, si, t);
+            q = gregoryCorrection2(c, sc, tc);
           } else {
             const CornerData c{vec(v[0]), vec(v[1]), vec(v[3]), vec(v[5]), vec(v[2]), vec(v[4]), vec(v[6])};
             q = gregoryCorrection(c, si, t, si, t);
           }
-          const DualVec3 left = ribbon(prev, sp, si), right = ribbon(i, si, t);
+          const DualVec3 left = ribbon(prev, sp, sc), right = ribbon(i, si, tc);
           const double mu = in.values.blendShare[i];
           const Dual sm = parabolic ? si * si * si : si * si, tm = parabolic ? t * t * t : t * t;
           const Dual lambda = tm / (sm + tm);

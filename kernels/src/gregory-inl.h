@@ -9,6 +9,7 @@
 #define CURVENET_KERNELS_GREGORY_INL_H_
 #endif
 
+#include <hwy/contrib/math/math-inl.h>
 #include <hwy/highway.h>
 
 HWY_BEFORE_NAMESPACE();
@@ -118,6 +119,14 @@ HWY_INLINE V sideBlendWeight(D d, V s, V t, V *bySide = nullptr, V *across = nul
   return hn::IfThenElse(atCorner, hn::Set(d, 0.5), hn::Mul(tm, inverse));
 }
 
+/// A G² ribbon's saturated cross parameter r tanh(x / r)
+/// (GregorySamples::reach; the caller takes r ≥ 1 as x itself), with
+/// d/dx = 1 − tanh² into *slope when given.
+template <class D, class V> HWY_INLINE V saturatedCross(D d, V x, double reach, V *slope = nullptr) {
+  const V th = hn::Tanh(d, hn::Mul(x, hn::Set(d, 1.0 / reach)));
+  if (slope) *slope = hn::NegMulAdd(th, th, hn::Set(d, 1.0));
+  return hn::Mul(hn::Set(d, reach), th);
+}
 
 } // namespace HWY_NAMESPACE
 } // namespace kernels_impl

@@ -48,7 +48,10 @@ namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 namespace ck = curvenet::kernels;
 
-template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t k, const GregoryArgs &a) {
+/// Saturated: a G² patch with a ribbon whose reach is below 1 (its own
+/// instance, so that the others run the very code they ran before reaches).
+template <bool Parabolic, bool Saturated, class D>
+HWY_INLINE void gregoryBody(D d, std::size_t k, const GregoryArgs &a) {
   using V = hn::Vec<D>;
   const ck::GregorySamples &in = *a.in;
   const int n = in.sides;
@@ -67,19 +70,35 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t 
     ownWeight[i] = hn::NegMulAdd(blend[i], muLambda, blend[i]);
     previousWeight[i] = hn::Mul(blend[i], hn::Add(hn::Set(d, 1.0 - mu), muLambda));
   }
+  // Corner i's cross parameters: s_i for R_{i−1}, t_i = 1 − s_{i−1} for R_i,
+  // each saturated at its ribbon's reach (GregorySamples::reach).
+  static_assert(Parabolic || !Saturated, "reaches are G² only");
+  V sCross[Saturated ? ck::GregorySamples::kMaxSides : 1], tCross[Saturated ? ck::GregorySamples::kMaxSides : 1];
+  if constexpr (Saturated)
+    for (int i = 0; i < n; ++i) {
+      const int prev = i == 0 ? n - 1 : i - 1;
+      sCross[i] = side[i], tCross[i] = hn::Sub(one, side[prev]);
+      if (in.reach[prev] < 1) sCross[i] = saturatedCross(d, sCross[i], in.reach[prev]);
+      if (in.reach[i] < 1) tCross[i] = saturatedCross(d, tCross[i], in.reach[i]);
+    }
+  auto crossS = [&](int i) { if constexpr (Saturated) return sCross[i]; else return side[i]; };
+  auto crossT = [&](int i) {
+    if constexpr (Saturated) return tCross[i]; else return hn::Sub(one, side[i == 0 ? n - 1 : i - 1]);
+  };
   V acc[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
   // The ribbon terms gathered per ribbon: R_i enters corner i at δ = t_i =
   // 1 − s_{i−1} with weight B_i and corner i + 1 at δ = s_{i+1} with weight
   // B_{i+1}, so its share is (B_i + B_{i+1}) P_i + (B_i t_i + B_{i+1} s_{i+1}) T_i
   // [+ ½ (B_i t_i² + B_{i+1} s_{i+1}²) C_i]: each ribbon value is read once.
-  // (The weights there are ownWeight[i] and previousWeight[i + 1].)
+  // (The weights there are ownWeight[i] and previousWeight[i + 1]; t_i and
+  // s_{i+1} the saturated ones.)
   for (int i = 0; i < n; ++i) {
-    const int prev = i == 0 ? n - 1 : i - 1, next = i + 1 == n ? 0 : i + 1;
-    const V t = hn::Sub(one, side[prev]);
-    const V atCorner = hn::Mul(ownWeight[i], t), atNext = hn::Mul(previousWeight[next], side[next]);
+    const int next = i + 1 == n ? 0 : i + 1;
+    const V t = crossT(i), sNext = crossS(next);
+    const V atCorner = hn::Mul(ownWeight[i], t), atNext = hn::Mul(previousWeight[next], sNext);
     const V wP = hn::Add(ownWeight[i], previousWeight[next]), wT = hn::Add(atCorner, atNext);
     V wC = hn::Zero(d);
-    if constexpr (Parabolic) wC = hn::Mul(half, hn::MulAdd(atCorner, t, hn::Mul(atNext, side[next])));
+    if constexpr (Parabolic) wC = hn::Mul(half, hn::MulAdd(atCorner, t, hn::Mul(atNext, sNext)));
     for (int c = 0; c < 3; ++c) {
       acc[c] = hn::MulAdd(wP, hn::LoadU(d, in.P[i][c] + k), acc[c]);
       acc[c] = hn::MulAdd(wT, hn::LoadU(d, in.T[i][c] + k), acc[c]);
@@ -90,14 +109,15 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t 
   for (int i = 0; i < n; ++i) {
     if (in.blendShare[i] == 1) continue;
     const int prev = i == 0 ? n - 1 : i - 1;
-    const V s = side[i], t = hn::Sub(one, side[prev]);
+    const V s = crossS(i), t = crossT(i);
     const double(*vec)[3] = a.corners[i].v;
     V q[3];
     if constexpr (Parabolic) {
       // Q in the form of GregoryCornerTerms (a00 is in taylor[0][0]): the
-      // polynomial in Horner form, then the rational terms.
+      // polynomial in Horner form, then the rational terms. Weights given
+      // are of the sweep's own (s, t): not those of a saturated corner.
       V w[8];
-      if (in.weights[i]) {
+      if (in.weights[i] && (!Saturated || (in.reach[prev] >= 1 && in.reach[i] >= 1))) {
         for (int j = 0; j < 8; ++j) w[j] = hn::LoadU(d, in.weights[i] + j * in.weightStride + k);
       } else {
         g2RationalWeights(d, s, t, w);
@@ -139,9 +159,14 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryBody(D d, std::size_t 
 }
 
 void GregoryPositions(std::size_t count, const GregoryArgs &args, bool reference) {
-  if (args.in->parabolic) forEachVectorOrReference(reference, count,
-      [&](auto d, std::size_t k) { gregoryBody<true>(d, k, args); });
-  else forEachVectorOrReference(reference, count, [&](auto d, std::size_t k) { gregoryBody<false>(d, k, args); });
+  const ck::GregorySamples &in = *args.in;
+  bool saturated = false;
+  for (int i = 0; i < in.sides; ++i) saturated = saturated || in.reach[i] < 1;
+  if (in.parabolic && saturated) forEachVectorOrReference(reference, count,
+      [&](auto d, std::size_t k) { gregoryBody<true, true>(d, k, args); });
+  else if (in.parabolic) forEachVectorOrReference(reference, count,
+      [&](auto d, std::size_t k) { gregoryBody<true, false>(d, k, args); });
+  else forEachVectorOrReference(reference, count, [&](auto d, std::size_t k) { gregoryBody<false, false>(d, k, args); });
 }
 
 /// The weights of samples [k, end) in vectors of d's width (a loop of its

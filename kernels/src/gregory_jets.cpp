@@ -61,10 +61,23 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
     const DualV<V> sp{load(val.s[prev]), load(in.sDu[prev]), load(in.sDv[prev])};
     const DualV<V> t{hn::Sub(one, sp.v), hn::Neg(sp.u), hn::Neg(sp.w)};
     const DualV<V> blend{load(val.blend[i]), load(in.blendDu[i]), load(in.blendDv[i])};
-    // I = R_{i−1}(σ = s_{i−1}, δ = s) + R_i(σ = s, δ = t) − Q; for R(σ, δ):
+    // The cross parameters: δ = s of R_{i−1} and δ = t of R_i, each saturated
+    // at its ribbon's reach (G², GregorySamples::reach) with the chain rule
+    // through r tanh(x / r); Q takes the same pair, the blends s and t.
+    DualV<V> sc = s, tc = t;
+    if constexpr (Parabolic) {
+      auto saturate = [&](DualV<V> &x, double reach) {
+        if (reach >= 1) return;
+        V slope;
+        x.v = saturatedCross(d, x.v, reach, &slope);
+        x.u = hn::Mul(slope, x.u), x.w = hn::Mul(slope, x.w);
+      };
+      saturate(sc, val.reach[prev]), saturate(tc, val.reach[i]);
+    }
+    // I = R_{i−1}(σ = s_{i−1}, δ = sc) + R_i(σ = s, δ = tc) − Q; for R(σ, δ):
     // value P + δT [+ ½δ²C], ∂ = σ' (P' + δT' [+ ½δ²C']) + δ' (T [+ δC]).
     V term[3][3];
-    const V hs2 = hn::Mul(half, hn::Mul(s.v, s.v)), ht2 = hn::Mul(half, hn::Mul(t.v, t.v));
+    const V hs2 = hn::Mul(half, hn::Mul(sc.v, sc.v)), ht2 = hn::Mul(half, hn::Mul(tc.v, tc.v));
     // G² blend share μ (GregorySamples::blendShare): the ribbons' weights
     // 1 − μ (1 − λ) and 1 − μ λ with their partials ±μ ∂λ.
     const double mu = val.blendShare[i];
@@ -78,22 +91,22 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
       ownShare = {hn::NegMulAdd(m, lambda, one), hn::Neg(previousShare.u), hn::Neg(previousShare.w)};
     }
     for (int c = 0; c < 3; ++c) {
-      V lv = hn::MulAdd(s.v, load(val.T[prev][c]), load(val.P[prev][c]));
-      V lslope = hn::MulAdd(s.v, load(in.dT[prev][c]), load(in.dP[prev][c]));
+      V lv = hn::MulAdd(sc.v, load(val.T[prev][c]), load(val.P[prev][c]));
+      V lslope = hn::MulAdd(sc.v, load(in.dT[prev][c]), load(in.dP[prev][c]));
       V lacross = load(val.T[prev][c]);
-      V rv = hn::MulAdd(t.v, load(val.T[i][c]), load(val.P[i][c]));
-      V rslope = hn::MulAdd(t.v, load(in.dT[i][c]), load(in.dP[i][c]));
+      V rv = hn::MulAdd(tc.v, load(val.T[i][c]), load(val.P[i][c]));
+      V rslope = hn::MulAdd(tc.v, load(in.dT[i][c]), load(in.dP[i][c]));
       V racross = load(val.T[i][c]);
       if constexpr (Parabolic) {
         const V lc = load(val.C[prev][c]), rc = load(val.C[i][c]);
         lv = hn::MulAdd(hs2, lc, lv), rv = hn::MulAdd(ht2, rc, rv);
         lslope = hn::MulAdd(hs2, load(in.dC[prev][c]), lslope), rslope = hn::MulAdd(ht2, load(in.dC[i][c]), rslope);
-        lacross = hn::MulAdd(s.v, lc, lacross), racross = hn::MulAdd(t.v, rc, racross);
+        lacross = hn::MulAdd(sc.v, lc, lacross), racross = hn::MulAdd(tc.v, rc, racross);
       }
       if (mu != 0) {
         // (1 − μ (1 − λ)) R_{i−1} + (1 − μ λ) R_i with the product rule.
-        const V lu = hn::MulAdd(sp.u, lslope, hn::Mul(s.u, lacross)), lw = hn::MulAdd(sp.w, lslope, hn::Mul(s.w, lacross));
-        const V ru = hn::MulAdd(s.u, rslope, hn::Mul(t.u, racross)), rw = hn::MulAdd(s.w, rslope, hn::Mul(t.w, racross));
+        const V lu = hn::MulAdd(sp.u, lslope, hn::Mul(sc.u, lacross)), lw = hn::MulAdd(sp.w, lslope, hn::Mul(sc.w, lacross));
+        const V ru = hn::MulAdd(s.u, rslope, hn::Mul(tc.u, racross)), rw = hn::MulAdd(s.w, rslope, hn::Mul(tc.w, racross));
         const V gap = hn::Sub(lv, rv);
         term[0][c] = hn::MulAdd(previousShare.v, lv, hn::Mul(ownShare.v, rv));
         term[1][c] = hn::MulAdd(previousShare.v, lu, hn::MulAdd(ownShare.v, ru, hn::Mul(previousShare.u, gap)));
@@ -101,8 +114,8 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
         continue;
       }
       term[0][c] = hn::Add(lv, rv);
-      term[1][c] = hn::MulAdd(sp.u, lslope, hn::MulAdd(s.u, lacross, hn::MulAdd(s.u, rslope, hn::Mul(t.u, racross))));
-      term[2][c] = hn::MulAdd(sp.w, lslope, hn::MulAdd(s.w, lacross, hn::MulAdd(s.w, rslope, hn::Mul(t.w, racross))));
+      term[1][c] = hn::MulAdd(sp.u, lslope, hn::MulAdd(sc.u, lacross, hn::MulAdd(s.u, rslope, hn::Mul(tc.u, racross))));
+      term[2][c] = hn::MulAdd(sp.w, lslope, hn::MulAdd(sc.w, lacross, hn::MulAdd(s.w, rslope, hn::Mul(tc.w, racross))));
     }
     const V zero = hn::Zero(d);
     if (mu == 1) {
@@ -114,7 +127,7 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
       //   ∂ρ/∂t = s³ t^{r−1} (r s^{3−p} + (2r − 3) t^{3−r}) / den²  (r = 0: −3 s³ t² / den²),
       // then the chain rule through s and t once per corner, not per term.
       V sp3[4], tp3[4], inv[8];
-      g2CornerWeights(d, s.v, t.v, sp3, tp3, inv);
+      g2CornerWeights(d, sc.v, tc.v, sp3, tp3, inv);
       const ck::GregoryCornerTerms &terms = a.terms[i];
       V q[3][3]; // [value, ∂/∂s, ∂/∂t][x, y, z]
       const V two = hn::Set(d, 2.0);
@@ -123,12 +136,12 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
         for (int p = 0; p <= 2; ++p) {
           const V t0 = hn::Set(d, terms.taylor[p][0][c]), t1 = hn::Set(d, terms.taylor[p][1][c]);
           const V t2 = hn::Set(d, terms.taylor[p][2][c]);
-          h[p] = hn::MulAdd(t.v, hn::MulAdd(t.v, t2, t1), t0);
-          dh[p] = hn::MulAdd(hn::Mul(two, t.v), t2, t1);
+          h[p] = hn::MulAdd(tc.v, hn::MulAdd(tc.v, t2, t1), t0);
+          dh[p] = hn::MulAdd(hn::Mul(two, tc.v), t2, t1);
         }
-        q[0][c] = hn::MulAdd(s.v, hn::MulAdd(s.v, h[2], h[1]), h[0]);
-        q[1][c] = hn::MulAdd(hn::Mul(two, s.v), h[2], h[1]);
-        q[2][c] = hn::MulAdd(s.v, hn::MulAdd(s.v, dh[2], dh[1]), dh[0]);
+        q[0][c] = hn::MulAdd(sc.v, hn::MulAdd(sc.v, h[2], h[1]), h[0]);
+        q[1][c] = hn::MulAdd(hn::Mul(two, sc.v), h[2], h[1]);
+        q[2][c] = hn::MulAdd(sc.v, hn::MulAdd(sc.v, dh[2], dh[1]), dh[0]);
       }
       // s^2 t^r and s^3 t^r for r = 0, 1, 2, shared by the rows p.
       const V s2t[3] = {sp3[2], hn::Mul(sp3[2], tp3[1]), hn::Mul(sp3[2], tp3[2])};
@@ -158,8 +171,8 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
       }
       for (int c = 0; c < 3; ++c) {
         term[0][c] = hn::Sub(term[0][c], q[0][c]);
-        term[1][c] = hn::NegMulAdd(q[1][c], s.u, hn::NegMulAdd(q[2][c], t.u, term[1][c]));
-        term[2][c] = hn::NegMulAdd(q[1][c], s.w, hn::NegMulAdd(q[2][c], t.w, term[2][c]));
+        term[1][c] = hn::NegMulAdd(q[1][c], sc.u, hn::NegMulAdd(q[2][c], tc.u, term[1][c]));
+        term[2][c] = hn::NegMulAdd(q[1][c], sc.w, hn::NegMulAdd(q[2][c], tc.w, term[2][c]));
       }
     } else {
       // − f W(a, b; x, y) with W = wa a + (1 − wa) b, wa = x / (x + y), x = x(s),

@@ -108,6 +108,11 @@ RegularDomain::SweepParameters RegularDomain::hermiteSweep(int i, Dual u, Dual v
 }
 
 void RegularDomain::hermiteSweepSides(Dual u, Dual v, bool quintic, std::span<Dual> s) const {
+  solveHermiteSweepSides(u, v, quintic, s);
+  if (const int j = cornerAt(u.v, v.v); j >= 0) s[j].v = 0, s[wrap(j - 1)].v = 1;
+}
+
+void RegularDomain::solveHermiteSweepSides(Dual u, Dual v, bool quintic, std::span<Dual> s) const {
   constexpr int kMaxBatch = 16;
   if (quintic || n_ == 3 || n_ > kMaxBatch) {
     for (int i = 0; i < n_; ++i) s[i] = hermiteSweep(i, u, v, quintic).s;

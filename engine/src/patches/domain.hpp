@@ -32,6 +32,20 @@ public:
   }
   /// Point at fraction s ∈ [0, 1] along side i.
   Vec2 pointOnSide(int i, double s) const;
+  /// The corner that (u, v) is exactly (bit for bit), or −1. There the
+  /// Hermite sweeps of its two sides are their ends exactly, s_j = 0 and
+  /// s_{j−1} = 1, in every path (hermiteSweepSides; the batched paths set
+  /// the same values after their roots): a root or a quotient of distances
+  /// leaves them a rounding error off (1e-32 … 1e-16), and the G² corner's
+  /// limits (the two-ribbon blend's ½, the correction's (a + b) / 2) are
+  /// taken at s = t = 0 alone, so that two paths an ulp apart would take
+  /// different ones.
+  int cornerAt(double u, double v) const {
+    if (u * u + v * v < 1 - 1e-9) return -1; // the corners lie on the unit circle
+    for (int i = 0; i < n_; ++i)
+      if (u == corners_[i].x && v == corners_[i].y) return i;
+    return -1;
+  }
 
   /// Perpendicular distance to the line of side i, in units of the side
   /// length (0 on the side, positive inside): the Δ_i of the Gregory blends.
@@ -69,6 +83,7 @@ public:
   /// hermiteSweep's s_i for every side at once (s holds sides() entries):
   /// the cubic sweeps' roots in one batch of the kernel solver, which fills
   /// its vector lanes with the sides instead of solving them one by one.
+  /// At a corner (cornerAt) its two sides' parameters are their exact ends.
   void hermiteSweepSides(Dual u, Dual v, bool quintic, std::span<Dual> s) const;
   /// The same by the engine's own scalar solver, independent of the kernels:
   /// sign changes of the quartic on a 64-cell grid refined by bisection, with
@@ -156,6 +171,8 @@ public:
   }
 
 private:
+  /// hermiteSweepSides without the exact ends at corners.
+  void solveHermiteSweepSides(Dual u, Dual v, bool quintic, std::span<Dual> s) const;
   /// A side-frame point (x, y) whose cubic sweep root is an end of [0, 1]:
   /// the solver kernel cannot certify it, hermiteSweepByGrid takes it.
   bool rootAtSweepEnd(double x, double y) const;

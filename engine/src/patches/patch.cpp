@@ -79,9 +79,6 @@ DualVec3 ribbonAt(const ParabolicJet &j, Dual s, Dual d) {
 constexpr double kCornerTaylorTolerance = 0.5;
 /// A reach is never taken below this, so that d keeps a range at every side.
 constexpr double kMinimumReach = 0.05;
-/// Sweep parameters this close to 0 or 1 are taken as the side's end (a
-/// few ulps of 1; see Patch::gregoryG2From).
-constexpr double kSweepEndSnap = 1e-15;
 
 /// The cross parameter of a ribbon whose reach is r: d ↦ r tanh(d / r) — odd,
 /// so its first two derivatives at d = 0 are 1 and 0 and the ribbon's P, T, C
@@ -479,18 +476,11 @@ DualVec3 Patch::gregoryG2(Dual u, Dual v) const {
   return gregoryG2From(s.data(), blend.data(), jet.data());
 }
 
-DualVec3 Patch::gregoryG2From(const Dual *sweep, const Dual *blend, const ParabolicJet *jet) const {
+DualVec3 Patch::gregoryG2From(const Dual *s, const Dual *blend, const ParabolicJet *jet) const {
   const int n = domain_.sides();
   // At a corner the two-ribbon blend and the correction's rational terms
-  // take their limits (s = t = 0) only when the sweep gives exactly 0 or 1,
-  // and the sweeps of the pointwise and the batched paths differ there by
-  // an ulp: a parameter within a few of a side's end is that end, in both.
-  std::array<Dual, kMaxSides> s;
-  for (int i = 0; i < n; ++i) {
-    s[i] = sweep[i];
-    if (reachLimited_ && std::abs(s[i].v) <= kSweepEndSnap) s[i].v = 0;
-    if (reachLimited_ && std::abs(s[i].v - 1) <= kSweepEndSnap) s[i].v = 1;
-  }
+  // take their limits (s = t = 0) only when the sweep gives exactly 0 or 1:
+  // every path's sweep does there (RegularDomain::cornerAt).
   DualVec3 result{};
   for (int i = 0; i < n; ++i) {
     const Dual b = blend[i];

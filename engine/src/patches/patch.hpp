@@ -209,8 +209,8 @@ private:
                             const Emit &emit) const;
   DualVec3 gregoryG2(Dual u, Dual v) const;
   /// The G² formula from every side's parameter, normalized corner blend and
-  /// parabolic jet there (value and gradient): the one form of it that
-  /// patches with a limited cross reach evaluate, pointwise and batched.
+  /// parabolic jet there (value and gradient), as the kernels compute it in
+  /// the batched paths.
   DualVec3 gregoryG2From(const Dual *side, const Dual *blend, const ParabolicJet *jet) const;
   /// Fills side i's parameter and corner i's blend with their gradients
   /// (value, ∂/∂u, ∂/∂v arrays) for samples [first, first + count).
@@ -259,9 +259,10 @@ private:
   std::vector<kernels::GregoryCorner> kernelCorners_, kernelEndCorners_;
   std::vector<kernels::GregoryCornerTerms> cornerTerms_;
   /// G²: per ribbon, where its cross parameter d saturates (d ↦ r tanh(d / r),
-  /// see limitedCross in patch.cpp); 1 leaves d as it is. reachLimited_ when
-  /// any is below 1: the batched paths then take gregoryG2From, since the
-  /// kernels and the shared plans' corner weights know no reach.
+  /// see limitedCross in patch.cpp); 1 leaves d as it is. The batched paths
+  /// hand them to the kernels (kernels::GregorySamples::reach). reachLimited_
+  /// when any is below 1: the shared plans' corner weights (of the sweep's
+  /// own parameters, one set for every corner) do not serve such a patch.
   std::vector<double> crossReach_;
   bool reachLimited_ = false;
   SurfaceOptions options_;

@@ -115,23 +115,27 @@ EvaluationPlan::EvaluationPlan(const PlanKey &key) : key_(key) {
         d_[k] = wachspress[0];
         for (int j = 0; j < n; ++j) power[j] = wachspress[j] * wachspress[j];
       } else {
-        if (perSide_)
-          for (int i = 1; i < n; ++i)
-            s_[i * count + k] = domain.hermiteSweep(i, u, v, key.sweepline == Sweepline::QuinticHermite).s;
-        switch (key.sweepline) {
-        case Sweepline::Hermite:
-          s_[k] = perSide_ ? domain.hermiteSweep(0, u, v).s
-                           : domain.hermiteSweepFromRoot(0, u, v, roots[k - range.begin()]).s;
-          break;
-        case Sweepline::QuinticHermite: s_[k] = domain.hermiteSweep(0, u, v, true).s; break;
-        default: s_[k] = domain.radialSideParameter(0, u, v); break;
+        std::array<Dual, 8> distance;
+        for (int j = 0; j < n; ++j) distance[j] = domain.perpendicularDistance(j, u, v);
+        if (perSide_ && key.sweepline == Sweepline::Hermite) {
+          // The triangle's closed-form sweep on the three distances computed
+          // once (RegularDomain::triangleSweep's very operations).
+          for (int i = 0; i < n; ++i)
+            s_[i * count + k] =
+                domain.triangleSideParameter(distance[domain.wrap(i - 1)], distance[domain.wrap(i + 1)], distance[i]);
+        } else {
+          if (perSide_)
+            for (int i = 1; i < n; ++i)
+              s_[i * count + k] = domain.hermiteSweep(i, u, v, key.sweepline == Sweepline::QuinticHermite).s;
+          switch (key.sweepline) {
+          case Sweepline::Hermite: s_[k] = domain.hermiteSweepFromRoot(0, u, v, roots[k - range.begin()]).s; break;
+          case Sweepline::QuinticHermite: s_[k] = domain.hermiteSweep(0, u, v, true).s; break;
+          default: s_[k] = domain.radialSideParameter(0, u, v); break;
+          }
         }
-        d_[k] = domain.perpendicularDistance(0, u, v);
+        d_[k] = distance[0];
         const bool g2 = key.scheme == Scheme::GregoryG2;
-        for (int j = 0; j < n; ++j) {
-          const Dual distance = domain.perpendicularDistance(j, u, v);
-          power[j] = g2 ? distance * distance * distance : distance * distance;
-        }
+        for (int j = 0; j < n; ++j) power[j] = g2 ? distance[j] * distance[j] * distance[j] : distance[j] * distance[j];
       }
       // Corner products in the order Patch uses, so corner 0's blend is the
       // same number the pointwise evaluation computes.

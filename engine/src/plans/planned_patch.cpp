@@ -57,7 +57,6 @@ struct Vec3Array {
   double *c[3];
   void take(Scratch &s) { c[0] = s.take(), c[1] = s.take(), c[2] = s.take(); }
   void set(std::size_t k, const Vec3 &x) { c[0][k] = x.x, c[1][k] = x.y, c[2][k] = x.z; }
-  Vec3 get(std::size_t k) const { return {c[0][k], c[1][k], c[2][k]}; }
 };
 
 struct JetArrays {
@@ -212,6 +211,20 @@ void cubicHermiteSweepJets(const RegularDomain &domain, int i, JetColumns &c) {
   kernels::hermiteSweepGradients(c.count, frame, e.x, e.y, c.fx(i), c.fy(i), c.side(i, 0), c.side(i, 1), c.side(i, 2));
 }
 
+/// The Hermite sweeps of a batch at the domain's exact corners: the two
+/// sides meeting there at their ends exactly (RegularDomain::cornerAt), as
+/// the pointwise sweep (hermiteSweepSides) gives them. s[i]: side i's values.
+void exactSweepEndsAtCorners(const RegularDomain &domain, std::size_t count, const double *u, const double *v,
+                             double *const *s) {
+  // Mostly no sample is near the unit circle, where the corners lie: one
+  // vectorized pass to find that out.
+  int nearCircle = 0;
+  for (std::size_t k = 0; k < count; ++k) nearCircle |= u[k] * u[k] + v[k] * v[k] >= 1 - 1e-9;
+  if (!nearCircle) return;
+  for (std::size_t k = 0; k < count; ++k)
+    if (const int j = domain.cornerAt(u[k], v[k]); j >= 0) s[j][k] = 0, s[domain.wrap(j - 1)][k] = 1;
+}
+
 } // namespace
 
 kernels::GregoryCorner kernelCorner(const CornerData &c) {
@@ -347,8 +360,10 @@ void Patch::evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPla
   // Shared weights need every side's parameters to be side 0's rotated
   // (not so on triangles, perSide()). G¹'s are too cheap to repay the round
   // trip through memory: shared, its evaluation measured no faster (they are
-  // 7% of its kernel even when free, G²'s 29%).
-  if (options_.scheme != Scheme::GregoryG2 || plan.perSide()) {
+  // 7% of its kernel even when free, G²'s 29%). A patch whose ribbons
+  // saturate has weights of its own per corner (of the saturated cross
+  // parameters, kernels::GregorySamples::reach): nothing to share.
+  if (options_.scheme != Scheme::GregoryG2 || plan.perSide() || reachLimited_) {
     for (int m = 0; m < group.members; ++m)
       evaluatePlannedPositions(plan, group.first + m * group.stride, group.count, out.from(m * group.stride));
     return;
@@ -429,22 +444,8 @@ void Patch::gregoryPositionsFrom(std::size_t count, const double *const *sideVal
       if (g2) in.C[i][c] = jets[6 + c];
     }
   }
-  if (g2 && reachLimited_) {
-    // Cross parameters that saturate (crossReach_) are the formula's own,
-    // not the kernel's: sample by sample, on the tables' ribbon values.
-    std::array<Dual, kMaxSides> sides, blends;
-    std::array<ParabolicJet, kMaxSides> ribbonJets;
-    for (std::size_t k = 0; k < count; ++k) {
-      for (int i = 0; i < n; ++i) {
-        sides[i] = in.s[i][k], blends[i] = in.blend[i][k];
-        ribbonJets[i].P = {in.P[i][0][k], in.P[i][1][k], in.P[i][2][k]};
-        ribbonJets[i].T = {in.T[i][0][k], in.T[i][1][k], in.T[i][2][k]};
-        ribbonJets[i].C = {in.C[i][0][k], in.C[i][1][k], in.C[i][2][k]};
-      }
-      out.set(k, gregoryG2From(sides.data(), blends.data(), ribbonJets.data()).v);
-    }
-    return;
-  }
+  if (g2)
+    for (int i = 0; i < n; ++i) in.reach[i] = crossReach_[i];
   if (g2 && cornerWeights) {
     for (int i = 0; i < n; ++i) in.weights[i] = cornerWeights[i];
     in.weightStride = weightStride;
@@ -522,6 +523,7 @@ void Patch::evaluatePositions(std::size_t count, const double *u, const double *
         kernels::hermiteSweepRoots(m, frame, x[i], y[i], side[i], scratch.at(4 * n));
       }
     }
+    if (!radial) exactSweepEndsAtCorners(domain_, m, u + first, v + first, side.data());
     // Corner blends B_{i,i−1} = ∏_{j∉{i,i−1}} Δ_j^m / Σ_k ∏_{j∉{k,k−1}} Δ_j^m, in
     // the product order of RegularDomain::cornerProducts.
     kernels::cornerBlends(m, sides, g2 ? 3 : 2, y.data(), blend.data(), nullptr, nullptr);
@@ -655,26 +657,13 @@ void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bo
       }
     }
 
-    if (g2 && reachLimited_) {
-      // As in gregoryPositionsFrom: saturating cross parameters, sample by sample.
-      std::array<Dual, kMaxSides> sides, blends;
-      std::array<ParabolicJet, kMaxSides> ribbonJets;
-      for (std::size_t k = 0; k < m; ++k) {
-        for (int i = 0; i < n; ++i) {
-          sides[i] = {side[i].v[k], side[i].du[k], side[i].dv[k]};
-          blends[i] = {blend[i].v[k], blend[i].du[k], blend[i].dv[k]};
-          ribbonJets[i] = {jets[i].P.get(k), jets[i].dP.get(k), jets[i].T.get(k), jets[i].dT.get(k), jets[i].C.get(k),
-                   jets[i].dC.get(k)};
-        }
-        setJet(result, k, gregoryG2From(sides.data(), blends.data(), ribbonJets.data()));
-      }
-      out(first, m, result);
-      continue;
-    }
-    // The Gregory formula (eqs. 16–18, 22) with its derivatives in one kernel pass.
+    // The Gregory formula (eqs. 16–18, 22) with its derivatives in one kernel
+    // pass, saturated cross parameters (crossReach_) included.
     kernels::GregoryJetSamples in;
     in.values.sides = n, in.values.parabolic = g2;
     for (int i = 0; i < int(blendShare_.size()); ++i) in.values.blendShare[i] = blendShare_[i];
+    if (g2)
+      for (int i = 0; i < n; ++i) in.values.reach[i] = crossReach_[i];
     for (int i = 0; i < n; ++i) {
       in.values.s[i] = side[i].v, in.sDu[i] = side[i].du, in.sDv[i] = side[i].dv;
       in.values.blend[i] = blend[i].v, in.blendDu[i] = blend[i].du, in.blendDv[i] = blend[i].dv;
@@ -744,6 +733,11 @@ void Patch::evaluateBatch(std::size_t count, const double *u, const double *v, D
     for (std::size_t k = 0; k < count; ++k)
       sides[i * count + k] = domain_.hermiteSweepFromRoot(i, Dual::u(u[k]), Dual::vCoord(v[k]), roots[k]).s;
   }
+  // At the exact corners, the two sides' exact ends (as exactSweepEndsAtCorners).
+  if (!radial)
+    for (std::size_t k = 0; k < count; ++k)
+      if (const int j = domain_.cornerAt(u[k], v[k]); j >= 0)
+        sides[j * count + k].v = 0, sides[domain_.wrap(j - 1) * count + k].v = 1;
   // Corner blends in product form (m = 2 for G¹, 3 for G²), as Patch::evaluate.
   for (std::size_t k = 0; k < count; ++k) {
     const Dual du = Dual::u(u[k]), dv = Dual::vCoord(v[k]);
@@ -810,11 +804,17 @@ void Patch::evaluateJets(std::size_t count, const double *u, const double *v, Du
       for (int c = 0; c < 3; ++c) blend[c][i] = columns.blend(i, c);
     }
     kernels::sideFrames(m, sides, columns.x(), columns.y(), fx.data(), fy.data());
-    if (!pointwiseSweeps)
+    if (!pointwiseSweeps) {
       for (int i = 0; i < n; ++i) {
         if (radial) radialSweepJets(domain_, i, columns);
         else cubicHermiteSweepJets(domain_, i, columns);
       }
+      if (!radial) {
+        std::array<double *, kMaxSides> values;
+        for (int i = 0; i < n; ++i) values[i] = columns.side(i, 0);
+        exactSweepEndsAtCorners(domain_, m, columns.x(), columns.y(), values.data());
+      }
+    }
     // Corner blends B_{i,i−1} = ∏_{j∉{i,i−1}} Δ_j^m / Σ_k ∏_{j∉{k,k−1}} Δ_j^m with their gradients.
     kernels::cornerBlends(m, sides, g2 ? 3 : 2, fy.data(), blend[0].data(), blend[1].data(), blend[2].data());
     gregoryJetsFrom(

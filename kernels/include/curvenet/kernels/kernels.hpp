@@ -125,6 +125,17 @@ struct GregorySamples {
   /// into the interior as Q_i does. 0 (the default) is [SV14] eq. 17 alone;
   /// at 1, Q_i is not evaluated.
   double blendShare[kMaxSides] = {};
+  /// G² only: ribbon i's reach r_i. Its cross parameter δ (s_{i+1} at
+  /// corner i + 1, t_i at corner i) saturates, δ ↦ r_i tanh(δ / r_i), where
+  /// its neighbours' corner expansions stop holding; the correction patch
+  /// Q_i takes the same saturated pair (r_{i−1} tanh(s_i / r_{i−1}),
+  /// r_i tanh(t_i / r_i)), the two-ribbon blend and the corner blends the
+  /// sweep's own. tanh is odd, so the ribbons on their sides are unchanged.
+  /// r_i ≥ 1 (the default) leaves δ as it is, in the very same operations.
+  /// A corner either of whose two ribbons saturates computes its rational
+  /// weights here, from the saturated pair: `weights` is not read there.
+  double reach[kMaxSides] = {1, 1, 1, 1, 1, 1, 1, 1};
+  static_assert(kMaxSides == 8, "one reach of 1 per side in reach's initializer");
 };
 
 /// The correction patch's constant vectors at corner i (where side i − 1
@@ -167,6 +178,8 @@ void gregoryCornerWeights(std::size_t count, const double *s, const double *sPre
 /// a blendShare take that share from the two-ribbon blend instead. The rational
 /// weights of each corner share one division (batch inversion). Samples
 /// exactly at a corner (s_i = t_i = 0) give that corner's finite limit.
+/// G² ribbons with a reach below 1 take their saturated cross parameters
+/// (GregorySamples::reach) in R and Q alike.
 /// G² uses each corner's GregoryCornerTerms: pass them in `terms` (one per
 /// side, from gregoryCornerTerms) when calling often with the same corners;
 /// null computes them on each call.
@@ -192,7 +205,8 @@ struct GregoryJetSamples {
 
 /// (b) gregoryPositions with exact first derivatives: the point into out.v,
 /// ∂/∂u into out.du, ∂/∂v into out.dv (product, quotient and chain rules
-/// through the ribbons and the rational weights, in one pass). G² takes
+/// through the ribbons and the rational weights, in one pass; a saturated
+/// cross parameter δ = r tanh(d / r) with its slope 1 − tanh²). G² takes
 /// its correction patches in the GregoryCornerTerms form, as
 /// gregoryPositions does (`terms`: one per side, or null to compute them).
 void gregoryJets(std::size_t count, const GregoryJetSamples &samples, const GregoryCorner *corners, DualVec3Span out,
