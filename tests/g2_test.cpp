@@ -184,6 +184,33 @@ TEST(SecondDerivatives, DifferencedHessianIsStableUnderStepHalving) {
   }
 }
 
+// A point on a domain side near a corner, computed from either end of the
+// side (the two differ by an ulp, and so do their sweeps across the side),
+// gets the same second derivatives: those of the side itself. There the
+// correction patch's rational terms turn over within the cube of the
+// distance to the corner, so an ulp of the cross parameter moved the
+// Hessian by up to 4.7e-10 of its size on the uneven loop's parts (now
+// 2.5e-12: the rounding of the correction patch, which cancels with the
+// ribbons' to 1/170 of their size there).
+TEST(SecondDerivatives, PointsOnASideGetTheSideLimitFromEitherEnd) {
+  const Network &net = builtin("uneven-loop");
+  const Surface surface = Surface::build(net, g2Options(EdgeCurvature::Averaging));
+  double worst = 0;
+  for (int f = 0; f < static_cast<int>(net.faces().size()); ++f) {
+    const int n = surface.domainSides(f);
+    for (int k = 0; k < n; ++k) {
+      const Vec2 from = surface.domainCorner(f, k), to = surface.domainCorner(f, (k + 1) % n);
+      for (double x : {0.005, 0.01, 0.02, 0.98, 0.99, 0.995}) {
+        const SurfacePoint2 a = surface.evaluateSecondOrder(f, from + (to - from) * x);
+        const SurfacePoint2 b = surface.evaluateSecondOrder(f, to + (from - to) * (1 - x));
+        const double scale = norm(a.duu) + norm(a.dvv) + norm(a.duv);
+        worst = std::max(worst, (norm(a.duu - b.duu) + norm(a.duv - b.duv) + norm(a.dvv - b.dvv)) / scale);
+      }
+    }
+  }
+  EXPECT_LE(worst, 1e-11);
+}
+
 class G2Builtin : public ::testing::TestWithParam<std::string> {};
 
 // Done-when of the issue: with each of averaging, direct and reference, G² at

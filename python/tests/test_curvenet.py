@@ -7,6 +7,7 @@ program."""
 
 import ast
 import ctypes
+import importlib.util
 import json
 import os
 import pathlib
@@ -19,18 +20,21 @@ import pytest
 
 import curvenet
 
+SOURCE = pathlib.Path(__file__).resolve().parents[2]
 
-def domain_points(model, face, count, seed=1):
-    """Uniform random points of a face's domain polygon (centred at 0): points
-    of the fan triangles (centre, corner k, corner k + 1)."""
-    corners = model.domain_corners(face)
-    n = len(corners)
-    rng = np.random.default_rng(seed)
-    k = rng.integers(0, n, count)
-    a, b = rng.random(count), rng.random(count)
-    flip = a + b > 1
-    a[flip], b[flip] = 1 - a[flip], 1 - b[flip]
-    return corners[k] * a[:, None] + corners[(k + 1) % n] * b[:, None]
+
+def example_module(name):
+    """examples/python/NAME.py as a module (its main() not run)."""
+    spec = importlib.util.spec_from_file_location(name, SOURCE / "examples" / "python" / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+# Uniform random points of a face's domain polygon (centred at 0), drawn as
+# the example draws them: points of the fan triangles (centre, corner k,
+# corner k + 1).
+domain_points = example_module("g1_vs_g2").domain_points
 
 
 # ---- The C interface through ctypes ------------------------------------------
@@ -357,8 +361,6 @@ def test_fast_path_writes_in_place_and_converts_only_what_it_must():
 
 
 # ---- The stub and the example ----------------------------------------------------
-
-SOURCE = pathlib.Path(__file__).resolve().parents[2]
 
 
 def test_the_stub_declares_what_the_module_defines_and_every_call_has_a_docstring():

@@ -1,5 +1,6 @@
-// What every harness does with a description that parsed: build the
-// topology, the surface of every scheme, and a coarse tessellation.
+// What every harness does with what it reads (refusedOrSound), and with a
+// description that parsed: build the topology, the surface of every scheme,
+// and a coarse tessellation.
 // Bad input must surface as InputError only; anything else (a crash, a
 // sanitizer report, an InternalError, a hang) is a finding.
 #pragma once
@@ -14,8 +15,21 @@
 
 namespace curvenet::fuzz {
 
-inline void exercise(const NetworkDescription &description) {
+/// Runs `body`, for which an InputError is bad input refused with a
+/// message (the expected outcome) and an InternalError a finding (abort).
+template <class Body> void refusedOrSound(const Body &body) {
   try {
+    body();
+  } catch (const InputError &) {
+    // refused with a message: the expected outcome for bad input
+  } catch (const InternalError &e) {
+    std::fprintf(stderr, "internal error: %s\n", e.what());
+    std::abort();
+  }
+}
+
+inline void exercise(const NetworkDescription &description) {
+  refusedOrSound([&] {
     // Keep single inputs cheap so that the fuzzer explores breadth, not size.
     std::size_t controlPoints = 0;
     for (const BSplineCurve &c : description.curves) controlPoints += c.controlPoints().size();
@@ -26,12 +40,7 @@ inline void exercise(const NetworkDescription &description) {
       const Mesh mesh = tessellate(surface, {2, 1});
       if (mesh.positions.size() != mesh.normals.size()) std::abort();
     }
-  } catch (const InputError &) {
-    // refused with a message: the expected outcome for bad input
-  } catch (const InternalError &e) {
-    std::fprintf(stderr, "internal error: %s\n", e.what());
-    std::abort();
-  }
+  });
 }
 
 } // namespace curvenet::fuzz

@@ -15,18 +15,19 @@
 #include "curvenet/network.hpp"
 #include "curvenet/sketch.hpp"
 #include "curvenet/surface.hpp"
+#include "fuzz_common.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size) {
   using namespace curvenet;
   const std::string text(reinterpret_cast<const char *>(data), size);
-  try {
+  fuzz::refusedOrSound([&] {
     const CurveGraph graph = parseObjCurveGraph(text, "fuzz.obj");
     // Keep single inputs cheap so that the fuzzer explores breadth, not size.
     std::size_t points = 0;
     for (const auto &stroke : graph.strokes) points += stroke.size();
-    if (graph.points.size() > 3000 || points > 6000) return 0;
+    if (graph.points.size() > 3000 || points > 6000) return;
     const SketchResult sketch = networkFromCurveGraph(graph, {}, "fuzz.obj");
-    if (sketch.description.faces.empty() || sketch.description.faces.size() > 64) return 0;
+    if (sketch.description.faces.empty() || sketch.description.faces.size() > 64) return;
     const Network network = Network::build(sketch.description);
     SurfaceOptions options;
     options.scheme = Scheme::GregoryG1;
@@ -36,11 +37,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t *data, std::size_t size
       std::fprintf(stderr, "finding: a non-finite point on an accepted sketch\n");
       std::abort();
     }
-  } catch (const InputError &) {
-    // refused with a message: the expected outcome for bad input
-  } catch (const InternalError &e) {
-    std::fprintf(stderr, "internal error: %s\n", e.what());
-    std::abort();
-  }
+  });
   return 0;
 }

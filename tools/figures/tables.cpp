@@ -190,7 +190,7 @@ std::vector<std::string> externalMastersTable() {
 std::vector<std::string> connectionCurvesTable() {
   std::vector<std::string> lines = {header({"network", "patches", "hidden seams", "seam jump gregory-g1",
                                             "seam jump gregory-g2", "folded faces (g1 / g2)"})};
-  for (const std::string name : {"concave-L", "ring"}) {
+  for (const std::string name : {"concave-L", "ring", "uneven-loop", "many-sided"}) {
     const Network network = builtin(name);
     std::vector<int> seams;
     for (size_t e = 0; e < network.segments().size(); ++e)

@@ -148,14 +148,21 @@ std::unique_ptr<EmbreeScene> buildScene(const Mesh &mesh) {
   return s;
 }
 
+/// Per triangle, the face whose range of mesh.faceTriangleStart holds it;
+/// `unassigned` for triangles in none.
+std::vector<std::int32_t> triangleFaces(const Mesh &mesh, std::int32_t unassigned) {
+  std::vector<std::int32_t> faceOf(mesh.triangles.size(), unassigned);
+  for (std::size_t f = 0; f + 1 < mesh.faceTriangleStart.size(); ++f)
+    for (std::uint32_t k = mesh.faceTriangleStart[f]; k < mesh.faceTriangleStart[f + 1] && k < faceOf.size(); ++k)
+      faceOf[k] = static_cast<std::int32_t>(f);
+  return faceOf;
+}
+
 /// Per triangle, bit k set when the edge opposite corner k is a patch
 /// boundary (its two triangles belong to different faces) or a mesh border.
 std::vector<std::uint8_t> boundaryEdges(const Mesh &mesh) {
   const std::size_t t = mesh.triangles.size();
-  std::vector<std::int32_t> faceOf(t, 0);
-  for (std::size_t f = 0; f + 1 < mesh.faceTriangleStart.size(); ++f)
-    for (std::uint32_t k = mesh.faceTriangleStart[f]; k < mesh.faceTriangleStart[f + 1] && k < t; ++k)
-      faceOf[k] = static_cast<std::int32_t>(f);
+  const std::vector<std::int32_t> faceOf = triangleFaces(mesh, 0);
   struct Edge {
     std::uint32_t a, b, triangle, corner;
   };
@@ -201,6 +208,147 @@ struct Shaded {
   bool hit = false;
 };
 
+/// Throws InputError naming what a render request gets wrong.
+void checkRenderInput(const Mesh &mesh, const RenderOptions &o, std::span<const double> vertexValues) {
+  if (o.width < 1 || o.width > 16384 || o.height < 1 || o.height > 16384)
+    throw InputError("", "image size", "width and height must lie in [1, 16384]");
+  if (!(o.stripes > 0) || !std::isfinite(o.stripes)) throw InputError("", "stripes", "must be a positive number");
+  if (!std::isfinite(o.azimuth) || !std::isfinite(o.elevation)) throw InputError("", "view", "angles must be finite");
+  if (!(o.valueRange >= 0) || !std::isfinite(o.valueRange)) throw InputError("", "value range", "must be ≥ 0");
+  if (mesh.triangles.empty() || mesh.positions.empty()) throw InputError("", "mesh", "has no triangles");
+  if (mesh.normals.size() != mesh.positions.size()) throw InputError("", "mesh", "needs one normal per vertex");
+  const bool valueMode = o.mode == Mode::Mean || o.mode == Mode::Gauss;
+  if (valueMode && vertexValues.size() != mesh.positions.size())
+    throw InputError("", "mesh", "curvature maps need one value per vertex");
+  for (const auto &t : mesh.triangles)
+    for (std::uint32_t v : t)
+      if (v >= mesh.positions.size()) throw InputError("", "mesh", "triangle index out of range");
+}
+
+/// What a ray shows: the background, or at its hit on the mesh the mode's
+/// colour (reflection lines, isophotes or the curvature map, two-sided)
+/// with the patch boundaries drawn over it.
+class Shader {
+public:
+  Shader(const Mesh &mesh, const RenderOptions &o, std::span<const double> vertexValues, const Camera &cam,
+         double valueRange)
+      : mesh_(mesh), o_(o), values_(vertexValues), cam_(cam), valueRange_(valueRange),
+        light_(normalized(cam.back + cam.up * 0.6 - cam.right * 0.4)),
+        pixelAngle_(2 * cam.tanHalfV / o.height), // world size of a pixel per unit distance
+        edgeMask_(o.boundaries ? boundaryEdges(mesh) : std::vector<std::uint8_t>{}),
+        faceOf_(triangleFaces(mesh, -1)) {}
+
+  Shaded operator()(const Vec3 &dir, const RTCRayHit &rh) const {
+    Shaded s;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+      s.color = kBackground;
+      return s;
+    }
+    s.hit = true;
+    const std::uint32_t prim = rh.hit.primID;
+    const auto &tri = mesh_.triangles[prim];
+    const double b1 = rh.hit.u, b2 = rh.hit.v, bary[3] = {1 - b1 - b2, b1, b2};
+    s.face = faceOf_[prim];
+    Vec3 n = normalized(mesh_.normals[tri[0]] * bary[0] + mesh_.normals[tri[1]] * bary[1] +
+                        mesh_.normals[tri[2]] * bary[2]);
+    const bool backFacing = dot(n, dir) > 0;
+    if (backFacing) n = -n; // two-sided: the inside of an open surface is shown too
+    shadeByMode(dir, n, tri, bary, s);
+    if (backFacing) s.color = Vec3{s.color.x * 1.0, s.color.y * 0.8, s.color.z * 0.65};
+    if (!edgeMask_.empty() && edgeMask_[prim]) s.color = withBoundary(s.color, prim, bary, rh.ray.tfar);
+    return s;
+  }
+
+private:
+  /// The mode's phase and colour at a hit with normal n (facing the eye).
+  void shadeByMode(const Vec3 &dir, const Vec3 &n, const std::array<std::uint32_t, 3> &tri, const double (&bary)[3],
+                   Shaded &s) const {
+    switch (o_.mode) {
+    case Mode::Reflection: {
+      const Vec3 r = dir - n * (2 * dot(dir, n));
+      s.phase = o_.stripes * std::atan2(dot(r, cam_.right), dot(r, cam_.back)) / std::numbers::pi;
+      s.color = mix(kDark, kLight, stripe(s.phase));
+      break;
+    }
+    case Mode::Isophote:
+      s.phase = o_.stripes * dot(n, light_);
+      s.color = mix(kDark, kLight, stripe(s.phase));
+      break;
+    case Mode::Mean:
+    case Mode::Gauss: {
+      s.phase = values_[tri[0]] * bary[0] + values_[tri[1]] * bary[1] + values_[tri[2]] * bary[2];
+      // A little diffuse light keeps the shape readable under the colours.
+      const double lit = 0.72 + 0.28 * std::abs(dot(n, light_));
+      s.color = (std::isfinite(s.phase) ? diverging(std::clamp(s.phase / valueRange_, -1.0, 1.0))
+                                        : Vec3{0.5, 0.5, 0.5}) * lit;
+      break;
+    }
+    }
+  }
+
+  /// `color` with the marked edges of triangle prim drawn over it, about
+  /// one and a half pixels wide at the hit's distance.
+  Vec3 withBoundary(const Vec3 &color, std::uint32_t prim, const double (&bary)[3], float distance) const {
+    // Distance from the hit to a marked edge: barycentric k times the
+    // triangle's height over the edge opposite corner k.
+    const auto &tri = mesh_.triangles[prim];
+    const Vec3 p[3] = {mesh_.positions[tri[0]], mesh_.positions[tri[1]], mesh_.positions[tri[2]]};
+    const double area2 = norm(cross(p[1] - p[0], p[2] - p[0]));
+    double nearest = INFINITY;
+    for (int k = 0; k < 3; ++k)
+      if (edgeMask_[prim] & (1u << k)) {
+        const double len = norm(p[(k + 2) % 3] - p[(k + 1) % 3]);
+        if (len > 0) nearest = std::min(nearest, bary[k] * area2 / len);
+      }
+    const double halfWidth = 0.75 * pixelAngle_ * distance;
+    return mix(color, kBoundary, 1 - smoothstep(0.6 * halfWidth, halfWidth, nearest));
+  }
+
+  const Mesh &mesh_;
+  const RenderOptions &o_;
+  std::span<const double> values_;
+  const Camera &cam_;
+  double valueRange_;
+  Vec3 light_;
+  double pixelAngle_;
+  std::vector<std::uint8_t> edgeMask_;
+  std::vector<std::int32_t> faceOf_;
+};
+
+/// The ray from the eye along dir, as Embree takes it.
+RTCRayHit primaryRay(const Vec3 &eye, const Vec3 &dir) {
+  RTCRayHit rh{};
+  rh.ray.org_x = static_cast<float>(eye.x);
+  rh.ray.org_y = static_cast<float>(eye.y);
+  rh.ray.org_z = static_cast<float>(eye.z);
+  rh.ray.dir_x = static_cast<float>(dir.x);
+  rh.ray.dir_y = static_cast<float>(dir.y);
+  rh.ray.dir_z = static_cast<float>(dir.z);
+  rh.ray.tnear = 0.f;
+  rh.ray.tfar = std::numeric_limits<float>::infinity();
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
+/// An image of the options' size with every buffer cleared.
+Image blankImage(const RenderOptions &o, double valueRange) {
+  Image img;
+  img.width = o.width;
+  img.height = o.height;
+  img.mode = o.mode;
+  img.stripes = o.stripes;
+  img.valueRange = valueRange;
+  const std::size_t pixels = static_cast<std::size_t>(o.width) * o.height;
+  img.color.assign(3 * pixels, 0.f);
+  img.phase.assign(pixels, kNaN);
+  img.coverage.assign(pixels, 0.f);
+  img.face.assign(pixels, -1);
+  img.rays = 5 * pixels;
+  return img;
+}
+
 } // namespace
 
 std::string modeName(Mode mode) {
@@ -220,100 +368,17 @@ std::optional<Mode> modeFromName(const std::string &name) {
 }
 
 Image renderMesh(const Mesh &mesh, const RenderOptions &o, std::span<const double> vertexValues) {
-  if (o.width < 1 || o.width > 16384 || o.height < 1 || o.height > 16384)
-    throw InputError("", "image size", "width and height must lie in [1, 16384]");
-  if (!(o.stripes > 0) || !std::isfinite(o.stripes)) throw InputError("", "stripes", "must be a positive number");
-  if (!std::isfinite(o.azimuth) || !std::isfinite(o.elevation)) throw InputError("", "view", "angles must be finite");
-  if (!(o.valueRange >= 0) || !std::isfinite(o.valueRange)) throw InputError("", "value range", "must be ≥ 0");
-  if (mesh.triangles.empty() || mesh.positions.empty()) throw InputError("", "mesh", "has no triangles");
-  if (mesh.normals.size() != mesh.positions.size()) throw InputError("", "mesh", "needs one normal per vertex");
-  const bool valueMode = o.mode == Mode::Mean || o.mode == Mode::Gauss;
-  if (valueMode && vertexValues.size() != mesh.positions.size())
-    throw InputError("", "mesh", "curvature maps need one value per vertex");
-  for (const auto &t : mesh.triangles)
-    for (std::uint32_t v : t)
-      if (v >= mesh.positions.size()) throw InputError("", "mesh", "triangle index out of range");
-
+  checkRenderInput(mesh, o, vertexValues);
   std::optional<tbb::global_control> limit;
   if (o.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
 
   const auto scene = buildScene(mesh);
-  const std::vector<std::uint8_t> edgeMask = o.boundaries ? boundaryEdges(mesh) : std::vector<std::uint8_t>{};
-  std::vector<std::int32_t> faceOf(mesh.triangles.size(), -1);
-  for (std::size_t f = 0; f + 1 < mesh.faceTriangleStart.size(); ++f)
-    for (std::uint32_t k = mesh.faceTriangleStart[f]; k < mesh.faceTriangleStart[f + 1] && k < faceOf.size(); ++k)
-      faceOf[k] = static_cast<std::int32_t>(f);
-
   const Camera cam = frame(mesh, o);
-  Image img;
-  img.width = o.width;
-  img.height = o.height;
-  img.mode = o.mode;
-  img.stripes = o.stripes;
-  img.valueRange = valueMode ? (o.valueRange > 0 ? o.valueRange : automaticRange(vertexValues)) : 0;
-  const std::size_t pixels = static_cast<std::size_t>(o.width) * o.height;
-  img.color.assign(3 * pixels, 0.f);
-  img.phase.assign(pixels, kNaN);
-  img.coverage.assign(pixels, 0.f);
-  img.face.assign(pixels, -1);
-  img.rays = 5 * pixels;
-  const Vec3 light = normalized(cam.back + cam.up * 0.6 - cam.right * 0.4);
-  const double pixelAngle = 2 * cam.tanHalfV / o.height; // world size of a pixel per unit distance
+  const bool valueMode = o.mode == Mode::Mean || o.mode == Mode::Gauss;
+  Image img = blankImage(o, valueMode ? (o.valueRange > 0 ? o.valueRange : automaticRange(vertexValues)) : 0);
+  const Shader shade(mesh, o, vertexValues, cam, img.valueRange);
 
-  auto shade = [&](const Vec3 &dir, const RTCRayHit &rh) -> Shaded {
-    Shaded s;
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
-      s.color = kBackground;
-      return s;
-    }
-    s.hit = true;
-    const std::uint32_t prim = rh.hit.primID;
-    const auto &tri = mesh.triangles[prim];
-    const double b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1 - b1 - b2;
-    s.face = faceOf[prim];
-    Vec3 n = normalized(mesh.normals[tri[0]] * b0 + mesh.normals[tri[1]] * b1 + mesh.normals[tri[2]] * b2);
-    const bool backFacing = dot(n, dir) > 0;
-    if (backFacing) n = -n; // two-sided: the inside of an open surface is shown too
-    switch (o.mode) {
-    case Mode::Reflection: {
-      const Vec3 r = dir - n * (2 * dot(dir, n));
-      s.phase = o.stripes * std::atan2(dot(r, cam.right), dot(r, cam.back)) / std::numbers::pi;
-      s.color = mix(kDark, kLight, stripe(s.phase));
-      break;
-    }
-    case Mode::Isophote:
-      s.phase = o.stripes * dot(n, light);
-      s.color = mix(kDark, kLight, stripe(s.phase));
-      break;
-    case Mode::Mean:
-    case Mode::Gauss: {
-      s.phase = vertexValues[tri[0]] * b0 + vertexValues[tri[1]] * b1 + vertexValues[tri[2]] * b2;
-      // A little diffuse light keeps the shape readable under the colours.
-      const double lit = 0.72 + 0.28 * std::abs(dot(n, light));
-      s.color = (std::isfinite(s.phase) ? diverging(std::clamp(s.phase / img.valueRange, -1.0, 1.0))
-                                        : Vec3{0.5, 0.5, 0.5}) * lit;
-      break;
-    }
-    }
-    if (backFacing) s.color = Vec3{s.color.x * 1.0, s.color.y * 0.8, s.color.z * 0.65};
-    if (!edgeMask.empty() && edgeMask[prim]) {
-      // Distance from the hit to a marked edge: barycentric k times the
-      // triangle's height over the edge opposite corner k.
-      const Vec3 p[3] = {mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]};
-      const double area2 = norm(cross(p[1] - p[0], p[2] - p[0]));
-      const double bary[3] = {b0, b1, b2};
-      double nearest = INFINITY;
-      for (int k = 0; k < 3; ++k)
-        if (edgeMask[prim] & (1u << k)) {
-          const double len = norm(p[(k + 2) % 3] - p[(k + 1) % 3]);
-          if (len > 0) nearest = std::min(nearest, bary[k] * area2 / len);
-        }
-      const double halfWidth = 0.75 * pixelAngle * rh.ray.tfar;
-      s.color = mix(s.color, kBoundary, 1 - smoothstep(0.6 * halfWidth, halfWidth, nearest));
-    }
-    return s;
-  };
-
+  // Five rays a pixel (kSamples); the first gives the pixel's phase and face.
   RTCScene rtcScene = scene->scene;
   ProgressCounter progress(o.progress, static_cast<std::uint64_t>(o.width) * static_cast<std::uint64_t>(o.height));
   parallel::parallelFor(tbb::blocked_range2d<int>(0, o.height, 16, 0, o.width, 16), [&](const auto &tile) {
@@ -329,18 +394,7 @@ Image renderMesh(const Mesh &mesh, const RenderOptions &o, std::span<const doubl
           const double sx = (2 * (x + kSamples[k][0]) / o.width - 1) * cam.tanHalfH;
           const double sy = (1 - 2 * (y + kSamples[k][1]) / o.height) * cam.tanHalfV;
           const Vec3 dir = normalized(cam.forward + cam.right * sx + cam.up * sy);
-          RTCRayHit rh{};
-          rh.ray.org_x = static_cast<float>(cam.eye.x);
-          rh.ray.org_y = static_cast<float>(cam.eye.y);
-          rh.ray.org_z = static_cast<float>(cam.eye.z);
-          rh.ray.dir_x = static_cast<float>(dir.x);
-          rh.ray.dir_y = static_cast<float>(dir.y);
-          rh.ray.dir_z = static_cast<float>(dir.z);
-          rh.ray.tnear = 0.f;
-          rh.ray.tfar = std::numeric_limits<float>::infinity();
-          rh.ray.mask = 0xFFFFFFFFu;
-          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-          rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+          RTCRayHit rh = primaryRay(cam.eye, dir);
           rtcIntersect1(rtcScene, &context, &rh);
           const Shaded s = shade(dir, rh);
           sum += s.color;

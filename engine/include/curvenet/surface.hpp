@@ -351,6 +351,10 @@ public:
   /// numbers through the whole formula (sweepline roots by implicit
   /// differentiation; only the ribbons' C'' is a fourth-order difference of the
   /// exact C', which matters away from the boundary only); `step` is ignored.
+  /// A point within rounding of a domain side (a sweep parameter within
+  /// 1e-15 of 0 or 1) is evaluated on the side itself: near a corner the
+  /// second derivatives change within the cube of the distance to it, and
+  /// the side's value is the limit the surface's G² holds for.
   /// Other schemes: the exact first derivatives are differenced along two
   /// orthogonal domain directions with fourth-order stencils of step `step`
   /// (domain units; circumradius 1): central (±h, ±2h) where the stencil stays

@@ -39,29 +39,23 @@ void requireOptions(const AnalysisOptions &o) {
     throw InputError("", "straight tolerance", "must be in (0, 0.5) radians");
 }
 
-VertexAnalysis analyzeWithFrame(const Network &network, int v, const VertexFrame &frame,
-                                const AnalysisOptions &options) {
-  const Vertex &vertex = network.vertices()[v];
-  VertexAnalysis out;
-  out.vertex = v;
-  out.position = vertex.position;
-  out.normal = frame.normal;
-  out.tangentResidual = frame.residualAngle;
-  out.valence = vertex.valence;
-  out.onBoundary = vertex.onBoundary;
-  const Vec3 n = frame.normal;
-
-  // Local frame: x along the first end's tangent projected into the plane.
-  const Vec3 t0 = vertex.tangents.front();
+/// The local frame's x axis at a vertex with normal n: the first end's
+/// tangent t0 projected into the plane.
+Vec3 tangentPlaneAxis(const Vec3 &n, const Vec3 &t0) {
   Vec3 x = normalized(t0 - dot(t0, n) * n);
   if (squaredNorm(x) == 0) { // a tangent along the normal: any perpendicular will do
     x = normalized(cross(n, std::abs(n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
   }
-  const Vec3 y = cross(n, x);
-  out.xAxis = x;
+  return x;
+}
 
-  // Ends in the order of Vertex::segments; a closed segment is listed twice,
-  // first for its start (the network builder's convention).
+/// The curve ends at vertex v in the order of Vertex::segments, with their
+/// angles ω about the normal n from the x axis (x, y = n × x) and their
+/// normal curvatures. A closed segment is listed twice, first for its start
+/// (the network builder's convention).
+std::vector<CurveEnd> curveEndsAt(const Network &network, int v, const Vec3 &n, const Vec3 &x, const Vec3 &y) {
+  const Vertex &vertex = network.vertices()[v];
+  std::vector<CurveEnd> ends;
   std::vector<int> seenClosed;
   for (size_t i = 0; i < vertex.segments.size(); ++i) {
     const int s = vertex.segments[i];
@@ -91,20 +85,24 @@ VertexAnalysis analyzeWithFrame(const Network &network, int v, const VertexFrame
     // κ^n = c''·n / |c'|²: invariant to the segment's affine reparameterization
     // and to its direction, so the segment on [0, 1] serves.
     end.normalCurvature = finiteNormalCurvature(dot(d[2], n) / speed2, v, seg.sourceCurve);
-    out.ends.push_back(end);
+    ends.push_back(end);
   }
+  return ends;
+}
 
-  // Independent curves: pair the most opposite tangents greedily, exactly as
-  // Network::build counts them ([SV14] Fig. 1: an X is two curves).
-  const int m = int(out.ends.size());
+/// Independent curves: pairs the most opposite tangents greedily, exactly
+/// as Network::build counts them ([SV14] Fig. 1: an X is two curves), and
+/// numbers each end's curve (CurveEnd::independentCurve). Returns how many.
+int numberIndependentCurves(std::vector<CurveEnd> &ends, double straightTolerance) {
+  const int m = int(ends.size());
   std::vector<int> partner(m, -1);
   for (;;) {
-    double best = pi - options.straightTolerance;
+    double best = pi - straightTolerance;
     int bi = -1, bj = -1;
     for (int i = 0; i < m; ++i)
       for (int j = i + 1; j < m; ++j) {
         if (partner[i] >= 0 || partner[j] >= 0) continue;
-        const double angle = angleBetween(out.ends[i].tangent, out.ends[j].tangent);
+        const double angle = angleBetween(ends[i].tangent, ends[j].tangent);
         if (angle > best) best = angle, bi = i, bj = j;
       }
     if (bi < 0) break;
@@ -113,12 +111,57 @@ VertexAnalysis analyzeWithFrame(const Network &network, int v, const VertexFrame
   int curves = 0;
   for (int i = 0; i < m; ++i)
     if (partner[i] < 0 || partner[i] > i) {
-      out.ends[i].independentCurve = curves;
-      if (partner[i] >= 0) out.ends[partner[i]].independentCurve = curves;
+      ends[i].independentCurve = curves;
+      if (partner[i] >= 0) ends[partner[i]].independentCurve = curves;
       ++curves;
     }
-  out.independentCurves = curves;
+  return curves;
+}
 
+/// [SV14] Sec. 2 counts a curve passing through once: one direction and the
+/// mean normal curvature (its least-squares value) per independent curve,
+/// then the bounded fit over those (a near-X or other ill-conditioned fit
+/// must not hand the tweak a curvature far beyond what the curves show,
+/// vertex_curvature.hpp).
+BoundedCurvatureFit fitPerIndependentCurve(const std::vector<CurveEnd> &ends, int curves,
+                                           const FitOptions &fitOptions) {
+  std::vector<double> curveOmega(curves), curveKappa(curves, 0.0), curveEnds(curves, 0.0);
+  for (const CurveEnd &end : ends) {
+    const int c = end.independentCurve;
+    if (curveEnds[c] == 0) curveOmega[c] = end.omega;
+    curveKappa[c] += end.normalCurvature;
+    curveEnds[c] += 1;
+  }
+  for (int c = 0; c < curves; ++c) curveKappa[c] /= curveEnds[c];
+  return fitBoundedCurvature(curveOmega, curveKappa, fitOptions);
+}
+
+VertexVerdict verdictOf(const VertexAnalysis &a, const AnalysisOptions &options) {
+  if (a.tangentResidual > options.tangentTolerance) return VertexVerdict::NoTangentPlane;
+  if (a.eulerResidualRelative <= options.curvatureTolerance) return VertexVerdict::G2Admissible;
+  if (!a.enclosureApplies || a.enclosureResidualRelative <= options.curvatureTolerance)
+    return VertexVerdict::G1Admissible;
+  return VertexVerdict::NeedsTweaking;
+}
+
+VertexAnalysis analyzeWithFrame(const Network &network, int v, const VertexFrame &frame,
+                                const AnalysisOptions &options) {
+  const Vertex &vertex = network.vertices()[v];
+  VertexAnalysis out;
+  out.vertex = v;
+  out.position = vertex.position;
+  out.normal = frame.normal;
+  out.tangentResidual = frame.residualAngle;
+  out.valence = vertex.valence;
+  out.onBoundary = vertex.onBoundary;
+  const Vec3 n = frame.normal;
+  const Vec3 x = tangentPlaneAxis(n, vertex.tangents.front()), y = cross(n, x);
+  out.xAxis = x;
+  out.ends = curveEndsAt(network, v, n, x, y);
+  out.independentCurves = numberIndependentCurves(out.ends, options.straightTolerance);
+
+  // The ends in order about the normal and the angles ψ between neighbours.
+  const int m = int(out.ends.size());
   std::stable_sort(out.ends.begin(), out.ends.end(),
                    [](const CurveEnd &a, const CurveEnd &b) { return a.omega < b.omega; });
   out.psi.resize(m);
@@ -154,28 +197,11 @@ VertexAnalysis analyzeWithFrame(const Network &network, int v, const VertexFrame
   out.eulerResidual = fitCurvature(omegas, kappas, fitOptions).rmsResidual;
   out.eulerResidualRelative = out.eulerResidual / out.curvatureScale;
 
-  // [SV14] Sec. 2 counts a curve passing through once: one direction and the
-  // mean normal curvature (its least-squares value) per independent curve.
-  std::vector<double> curveOmega(curves), curveKappa(curves, 0.0), curveEnds(curves, 0.0);
-  for (const CurveEnd &end : out.ends) {
-    const int c = end.independentCurve;
-    if (curveEnds[c] == 0) curveOmega[c] = end.omega;
-    curveKappa[c] += end.normalCurvature;
-    curveEnds[c] += 1;
-  }
-  for (int c = 0; c < curves; ++c) curveKappa[c] /= curveEnds[c];
-  // Bounded: a near-X or other ill-conditioned fit must not hand the tweak a
-  // curvature far beyond what the curves show (vertex_curvature.hpp).
-  const BoundedCurvatureFit bounded = fitBoundedCurvature(curveOmega, curveKappa, fitOptions);
+  const BoundedCurvatureFit bounded = fitPerIndependentCurve(out.ends, out.independentCurves, fitOptions);
   out.fit = bounded.fit;
   out.regularizedModes = bounded.regularizedModes;
   out.principalDirection1 = std::cos(out.fit.tensor.lambda) * x + std::sin(out.fit.tensor.lambda) * y;
-
-  if (out.tangentResidual > options.tangentTolerance) out.verdict = VertexVerdict::NoTangentPlane;
-  else if (out.eulerResidualRelative <= options.curvatureTolerance) out.verdict = VertexVerdict::G2Admissible;
-  else if (!out.enclosureApplies || out.enclosureResidualRelative <= options.curvatureTolerance)
-    out.verdict = VertexVerdict::G1Admissible;
-  else out.verdict = VertexVerdict::NeedsTweaking;
+  out.verdict = verdictOf(out, options);
   return out;
 }
 

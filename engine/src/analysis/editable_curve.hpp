@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "curvenet/curve.hpp"
+#include "curvenet/error.hpp"
 #include "curvenet/network.hpp"
 
 namespace curvenet {
@@ -112,6 +114,37 @@ struct EditableCurve {
   }
 };
 
+/// Splits the first span beyond each end in `ends` (a vertex parameter t0
+/// with the side `right` its segment lies on, as EndTurn and EndTweak hold
+/// them) until the control point `movedPoint(end)` leaves the neighbouring
+/// vertex on that side (the next of `pinned`, sorted) alone to second
+/// order: moving it then changes nothing there. Returns the knots inserted;
+/// more than `limit` is an invariant break on `element`.
+template <class End, class MovedPoint>
+int separateFromNeighbours(EditableCurve &edit, const std::vector<End> &ends, const std::vector<double> &pinned,
+                           const MovedPoint &movedPoint, int limit, const std::string &element) {
+  int inserted = 0;
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (const End &end : ends) {
+      const int j = movedPoint(end);
+      CURVENET_CHECK(j >= 0 && j < edit.count(), "moved control point " + std::to_string(j) + " of " +
+                                                     std::to_string(edit.count()) + " on " + element);
+      const auto next = std::upper_bound(pinned.begin(), pinned.end(), end.t0);
+      const auto previous = std::lower_bound(pinned.begin(), pinned.end(), end.t0);
+      const bool hasNeighbour = end.right ? next != pinned.end() : previous != pinned.begin();
+      if (!hasNeighbour || edit.leavesAlone(j, end.right ? *next : *(previous - 1))) continue;
+      const double split =
+          end.right ? 0.5 * (end.t0 + *std::upper_bound(edit.U.begin(), edit.U.end(), end.t0))
+                    : 0.5 * (*(std::lower_bound(edit.U.begin(), edit.U.end(), end.t0) - 1) + end.t0);
+      edit.insertKnot(split);
+      changed = true;
+      CURVENET_CHECK(++inserted < limit, "knot insertion does not terminate on " + element);
+    }
+  }
+  return inserted;
+}
+
 /// t snapped to a knot of `edit` within 1e-13 of the domain [a, b], as
 /// BSplineCurve::restricted snaps, so the network builder cuts the edited
 /// curve exactly at the knots inserted by an edit.
@@ -134,6 +167,33 @@ inline std::vector<double> pinnedParameters(const Network &network, int curveInd
   std::sort(pinned.begin(), pinned.end());
   pinned.erase(std::unique(pinned.begin(), pinned.end()), pinned.end());
   return pinned;
+}
+
+/// A curve of a network under edit at some of its vertices, as
+/// startEndEdits leaves it.
+struct EndEdits {
+  EditableCurve edit;
+  std::vector<double> pinned; ///< every vertex on the curve (pinnedParameters)
+  int insertedKnots = 0;
+};
+
+/// Curve `curveIndex` of `network` made ready for edits at `ends` (each
+/// with its vertex parameter t0, snapped here to the curve's knots): raised
+/// to `degree` when it is one Bézier span, its vertices pinned, and every
+/// end inside the domain made a knot of multiplicity p, so that its point
+/// and its two neighbours are control points.
+template <class End> EndEdits startEndEdits(const Network &network, int curveIndex, int degree, std::vector<End> &ends) {
+  const BSplineCurve &original = network.description().curves[curveIndex];
+  EndEdits result{EditableCurve(original), {}, 0};
+  EditableCurve &edit = result.edit;
+  edit.raiseBezierDegree(degree);
+  const double a = original.domainStart(), b = original.domainEnd();
+  result.pinned = pinnedParameters(network, curveIndex, edit);
+  for (End &end : ends) end.t0 = snappedToKnot(edit, end.t0, a, b);
+  for (const End &end : ends)
+    if (end.t0 > a && end.t0 < b)
+      for (int r = edit.multiplicity(end.t0); r < edit.p; ++r) edit.insertKnot(end.t0), ++result.insertedKnots;
+  return result;
 }
 
 } // namespace v1

@@ -60,41 +60,20 @@ int turnedPoint(const EditableCurve &edit, const EndTurn &turn) { return pointAt
 /// Turns the tangents of one curve; appends the moves.
 BSplineCurve turnCurve(const Network &network, int curveIndex, std::vector<EndTurn> turns,
                        std::vector<RepairMove> &moves) {
-  const BSplineCurve &original = network.description().curves[curveIndex];
-  EditableCurve edit(original);
   // Smoothness kept: a turned point of a cubic Bézier side reaches the far
   // vertex's curvature, and a knot inserted to stop it would leave a jump of
   // the third derivative inside the side (which gregory-g2's ribbons carry
   // into the surface's first derivatives). At degree 4 the second point
   // leaves the far end alone to second order with no knot at all.
-  edit.raiseBezierDegree(kSmoothTurnDegree);
-  const double a = original.domainStart(), b = original.domainEnd();
-  const std::vector<double> pinned = pinnedParameters(network, curveIndex, edit);
-  for (EndTurn &turn : turns) turn.t0 = snappedToKnot(edit, turn.t0, a, b);
-
-  // A vertex inside the curve becomes a knot of multiplicity p, so that its
-  // point and its two neighbours are control points.
-  for (const EndTurn &turn : turns)
-    if (turn.t0 > a && turn.t0 < b)
-      for (int r = edit.multiplicity(turn.t0); r < edit.p; ++r) edit.insertKnot(turn.t0);
+  EndEdits prepared = startEndEdits(network, curveIndex, kSmoothTurnDegree, turns);
+  EditableCurve &edit = prepared.edit;
+  const std::vector<double> &pinned = prepared.pinned;
+  const double a = network.description().curves[curveIndex].domainStart();
+  const double b = network.description().curves[curveIndex].domainEnd();
   // Split the first span beyond each vertex until the turned point leaves the
   // neighbouring vertex alone to second order (position, tangent, curvature).
-  for (bool changed = true; changed;) {
-    changed = false;
-    for (const EndTurn &turn : turns) {
-      const int j = turnedPoint(edit, turn);
-      CURVENET_CHECK(j >= 0 && j < edit.count(), "turned control point out of range");
-      const auto next = std::upper_bound(pinned.begin(), pinned.end(), turn.t0);
-      const auto prev = std::lower_bound(pinned.begin(), pinned.end(), turn.t0);
-      const bool hasNeighbour = turn.right ? next != pinned.end() : prev != pinned.begin();
-      if (!hasNeighbour || edit.leavesAlone(j, turn.right ? *next : *(prev - 1))) continue;
-      const double split = turn.right ? 0.5 * (turn.t0 + *std::upper_bound(edit.U.begin(), edit.U.end(), turn.t0))
-                                      : 0.5 * (*(std::lower_bound(edit.U.begin(), edit.U.end(), turn.t0) - 1) + turn.t0);
-      edit.insertKnot(split);
-      changed = true;
-      CURVENET_CHECK(edit.count() < 100000, "knot insertion does not terminate on curve " + std::to_string(curveIndex));
-    }
-  }
+  separateFromNeighbours(edit, turns, pinned, [&](const EndTurn &turn) { return turnedPoint(edit, turn); }, 100000,
+                         "curve " + std::to_string(curveIndex));
   // The rotations, about the vertex point. A curve passing through turns both
   // neighbours with the rotation of its first end listed, which maps the
   // opposite tangent to the opposite of the turned one: it stays C¹.

@@ -77,47 +77,22 @@ TweakResult tweakNetwork(const Network &network, const TweakOptions &options) {
     const std::string element = "curve " + std::to_string(curveIndex);
     if (original.degree() < 2)
       throw InputError("", element, "degree 1: a polyline has no curvature to tweak; raise its degree");
-    EditableCurve edit(original);
     // Smoothness kept: on a Bézier curve of degree 5 the moved (third) point
     // leaves the far vertex alone to second order with no knot inside the
     // span, so no third-derivative jump is added where gregory-g2's ribbons
-    // would carry it into the surface's first derivatives.
-    edit.raiseBezierDegree(kSmoothTweakDegree);
-    const double a = original.domainStart(), b = original.domainEnd();
-
-    // Every vertex on this curve: none of them may feel another end's move.
-    const std::vector<double> pinned = pinnedParameters(network, curveIndex, edit);
-    for (EndTweak &tw : tweaks) tw.t0 = snappedToKnot(edit, tw.t0, a, b);
-
+    // would carry it into the surface's first derivatives. Every vertex on
+    // the curve is pinned: none of them may feel another end's move.
     // 1. The vertex becomes a knot of multiplicity p (its point a control point).
-    for (const EndTweak &tw : tweaks)
-      if (tw.t0 > a && tw.t0 < b)
-        for (int r = edit.multiplicity(tw.t0); r < edit.p; ++r) edit.insertKnot(tw.t0), ++result.insertedKnots;
+    EndEdits prepared = startEndEdits(network, curveIndex, kSmoothTweakDegree, tweaks);
+    EditableCurve &edit = prepared.edit;
+    const std::vector<double> &pinned = prepared.pinned;
+    result.insertedKnots += prepared.insertedKnots;
 
     // 2. Split the first span beyond the vertex until the moved point's basis
     // function vanishes to second order at the neighbouring vertex. At most
     // three splits per end: then the support ends before that vertex.
-    for (bool changed = true; changed;) {
-      changed = false;
-      for (const EndTweak &tw : tweaks) {
-        const int j = edit.movedPoint(tw.t0, tw.right);
-        CURVENET_CHECK(j >= 0 && j < edit.count(), "moved control point " + std::to_string(j) + " of " +
-                                                       std::to_string(edit.count()));
-        const auto next = tw.right ? std::upper_bound(pinned.begin(), pinned.end(), tw.t0) : pinned.end();
-        const auto prevEnd = tw.right ? pinned.end() : std::lower_bound(pinned.begin(), pinned.end(), tw.t0);
-        const bool hasNeighbour = tw.right ? next != pinned.end() : prevEnd != pinned.begin();
-        if (!hasNeighbour) continue;
-        const double neighbour = tw.right ? *next : *(prevEnd - 1);
-        if (edit.leavesAlone(j, neighbour)) continue;
-        const auto it = std::upper_bound(edit.U.begin(), edit.U.end(), tw.t0);
-        const double split = tw.right ? 0.5 * (tw.t0 + *it)
-                                      : 0.5 * (*(std::lower_bound(edit.U.begin(), edit.U.end(), tw.t0) - 1) + tw.t0);
-        edit.insertKnot(split);
-        ++result.insertedKnots;
-        changed = true;
-        CURVENET_CHECK(result.insertedKnots < 1000, "knot insertion does not terminate on " + element);
-      }
-    }
+    result.insertedKnots += separateFromNeighbours(
+        edit, tweaks, pinned, [&](const EndTweak &tw) { return edit.movedPoint(tw.t0, tw.right); }, 1000, element);
 
     // 3. The moves. c''(t0)·n is affine in the move δ of Q_j along n (Q_j's
     // basis function and its derivative vanish at t0, so c and c' do not

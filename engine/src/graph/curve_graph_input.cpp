@@ -17,15 +17,11 @@ namespace curvenet {
 inline namespace v1 {
 namespace {
 
-using text::integer;
-using text::number;
-using text::tokens;
-
 /// Calls visit(lineNumber, tokens) for every non-empty line, comments removed.
 template <typename Visit> void forEachRecord(const std::string &text, Visit &&visit) {
   const std::vector<std::string_view> all = text::lines(text);
   for (std::size_t k = 0; k < all.size(); ++k)
-    if (const auto t = tokens(all[k]); !t.empty()) visit(k + 1, t);
+    if (const auto t = text::tokens(all[k]); !t.empty()) visit(k + 1, t);
 }
 
 } // namespace
@@ -50,13 +46,14 @@ CurveGraph parseObjCurveGraph(const std::string &text, const std::string &file) 
     const std::string where = "line " + std::to_string(line);
     if (t[0] == "v") {
       if (t.size() < 4) throw InputError(file, where, "a vertex needs x y z");
-      graph.points.push_back({number(t[1], file, where), number(t[2], file, where), number(t[3], file, where)});
+      graph.points.push_back(
+          {text::number(t[1], file, where), text::number(t[2], file, where), text::number(t[3], file, where)});
     } else if (t[0] == "l") {
       if (t.size() < 3) throw InputError(file, where, "a line element needs at least 2 points");
       PendingStroke stroke{{}, line};
       // "i" or "i/t"; negative indices count back from the last vertex read.
       for (std::size_t k = 1; k < t.size(); ++k) {
-        const long long index = integer(t[k].substr(0, t[k].find('/')), file, where);
+        const long long index = text::integer(t[k].substr(0, t[k].find('/')), file, where);
         if (index == 0) throw InputError(file, where, "OBJ indices start at 1");
         stroke.indices.push_back(index < 0 ? static_cast<long long>(graph.points.size()) + index : index - 1);
       }

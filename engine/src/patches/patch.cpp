@@ -79,6 +79,17 @@ DualVec3 ribbonAt(const ParabolicJet &j, Dual s, Dual d) {
 constexpr double kCornerTaylorTolerance = 0.5;
 /// A reach is never taken below this, so that d keeps a range at every side.
 constexpr double kMinimumReach = 0.05;
+/// Sweep parameters this close to 0 or 1 are taken as the side's end (a
+/// few ulps of 1; see Patch::evaluateSecondOrder).
+constexpr double kSweepEndSnap = 1e-15;
+
+/// A sweep parameter within kSweepEndSnap of 0 or 1 moved onto that end,
+/// its derivatives kept.
+template <class N> N snappedToSweepEnd(N s) {
+  if (std::abs(s.v) <= kSweepEndSnap) s.v = 0;
+  else if (std::abs(s.v - 1) <= kSweepEndSnap) s.v = 1;
+  return s;
+}
 
 /// The cross parameter of a ribbon whose reach is r: d ↦ r tanh(d / r) — odd,
 /// so its first two derivatives at d = 0 are 1 and 0 and the ribbon's P, T, C
@@ -428,7 +439,17 @@ Dual2Vec3 Patch::evaluateSecondOrder(double uValue, double vValue) const {
   std::array<Dual2, kMaxSides> s, cubed;
   std::array<SideEndData, kMaxSides> jet;
   for (int i = 0; i < n; ++i) {
-    s[i] = domain_.hermiteSweepSide2(i, u, v, quintic);
+    // On a side the two neighbouring sides' sweeps are 0 and 1 exactly, but
+    // a point computed on it (corner + x · edge) and its root miss them by
+    // an ulp or two, and near a corner the second derivatives are that
+    // sensitive to the cross parameter: the rational terms of the
+    // correction patch switch between their two ribbons' corner data over
+    // a layer as thin as the cube of the distance to the corner (W₀₂ =
+    // (s³ a + t b) / (s³ + t), t the cross parameter), so ∂²Q/∂t² moves
+    // by (b − a) / s³ per unit of t. At 1 % of a side from a corner an ulp
+    // of t gave curvature jumps of 5e-11 across seams that are G² in the
+    // limit; taken as the side itself, the point gets that limit.
+    s[i] = snappedToSweepEnd(domain_.hermiteSweepSide2(i, u, v, quintic));
     const Dual2 distance = domain_.perpendicularDistance2(i, u, v);
     cubed[i] = distance * distance * distance;
     const double side = ribbons_[i].snap(std::clamp(s[i].v, 0.0, 1.0));

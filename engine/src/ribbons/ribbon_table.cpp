@@ -108,48 +108,161 @@ inline double simpsonDifference(const double *slopes, std::size_t dims, std::siz
   return h / 24 * weightedSlopes(slopes, dims, d, weight);
 }
 
-} // namespace
-
-RibbonTable::RibbonTable(int dims, std::vector<double> breaks, const Exact &exact)
-    // Rows of a multiple of 4 (kernels::PolynomialTable), a lone last
-    // coordinate as a tail: nine (G² P, T, C) are rows of 8 and one tail.
-    : dims_(dims), paddedDims_(dims % 4 == 1 ? dims - 1 : (dims + 3) / 4 * 4) {
-  CURVENET_CHECK(dims >= 1 && dims <= kMaxDims, "ribbon table: " + std::to_string(dims) + " coordinates");
+/// The parameters where the table's first intervals meet: 0, the breaks in
+/// (0, 1) in order (none within 1e-12 of another or of an end), 1.
+std::vector<double> tableEdges(std::vector<double> breaks) {
   std::sort(breaks.begin(), breaks.end());
   std::vector<double> edges{0.0};
   for (double b : breaks)
     if (b > 1e-12 && b < 1 - 1e-12 && b - edges.back() > 1e-12) edges.push_back(b);
   edges.push_back(1.0);
+  return edges;
+}
 
+/// The one-sided stencil's step on an interval of width h.
+double stencilStep(double h) { return std::min(0x1p-13, h / 8); }
+
+/// The kPerInterval parameters at which interval [a, b] is sampled: the
+/// ends one ulp inside (on a segment break the exact ribbon takes the piece
+/// of the side it is asked from) with four stencil steps each, then the
+/// two check points.
+void intervalParameters(double a, double b, double *p) {
+  const double h = b - a, step = stencilStep(h);
+  p[0] = std::nextafter(a, b), p[5] = std::nextafter(b, a);
+  for (int k = 1; k <= 4; ++k) p[k] = a + k * step, p[5 + k] = b - k * step;
+  p[10] = a + kValueCheck * h, p[11] = a + kSlopeCheck * h;
+}
+
+/// One interval's samples: `dims` values and slopes per parameter, in the
+/// order intervalParameters lays them out.
+struct IntervalSamples {
+  const double *values, *slopes;
+  std::size_t dims;
+  double value(int point, std::size_t d) const { return values[static_cast<std::size_t>(point) * dims + d]; }
+  double slope(int point, std::size_t d) const { return slopes[static_cast<std::size_t>(point) * dims + d]; }
+};
+
+/// The quintic Hermite interpolant of one interval of width h in local
+/// t ∈ [0, 1]: 6 rows of `dims` coefficients (t⁰ … t⁵).
+std::vector<double> quinticHermite(const IntervalSamples &x, double h) {
+  const std::size_t D = x.dims;
+  const double step = stencilStep(h);
+  std::vector<double> c(6 * D);
+  for (std::size_t d = 0; d < D; ++d) {
+    // Second derivatives by fourth-order one-sided differences of the
+    // exact first ones, the stencil inside the interval.
+    constexpr double w[5] = {-25, 48, -36, 16, -3};
+    double second0 = 0, second1 = 0;
+    for (int k = 0; k < 5; ++k) second0 += w[k] * x.slope(k, d), second1 += w[k] * x.slope(5 + k, d);
+    second0 /= 12 * step, second1 /= -12 * step;
+    const double f0 = x.value(0, d), m0 = h * x.slope(0, d), m1 = h * x.slope(5, d);
+    const double k0 = h * h * second0, k1 = h * h * second1;
+    const double df = h <= kWidestQuadratureInterval ? booleDifference(x.slopes, D, d, h) : x.value(5, d) - f0;
+    c[d] = f0;
+    c[D + d] = m0;
+    c[2 * D + d] = 0.5 * k0;
+    c[3 * D + d] = 10 * df - 6 * m0 - 4 * m1 - 0.5 * (3 * k0 - k1);
+    c[4 * D + d] = -15 * df + 8 * m0 + 7 * m1 + 0.5 * (3 * k0 - 2 * k1);
+    c[5 * D + d] = 6 * df - 3 * m0 - 3 * m1 - 0.5 * (k0 - k1);
+  }
+  return c;
+}
+
+/// How far the interpolant c misses the exact samples at the two check
+/// points: in value (both points) and in slope (d/ds, the slope point).
+struct Miss {
+  double value = 0, slope = 0;
+};
+Miss checkMiss(const std::vector<double> &c, const IntervalSamples &x, double h) {
+  const int dims = static_cast<int>(x.dims);
+  std::array<double, RibbonTable::kMaxDims> value{}, slope{};
+  Miss miss;
+  polynomial(c.data(), dims, dims, kValueCheck, value.data(), nullptr);
+  for (std::size_t d = 0; d < x.dims; ++d) miss.value = std::max(miss.value, std::abs(value[d] - x.value(10, d)));
+  polynomial(c.data(), dims, dims, kSlopeCheck, value.data(), slope.data());
+  for (std::size_t d = 0; d < x.dims; ++d) {
+    miss.value = std::max(miss.value, std::abs(value[d] - x.value(11, d)));
+    miss.slope = std::max(miss.slope, std::abs(slope[d] / h - x.slope(11, d)));
+  }
+  return miss;
+}
+
+/// How far the slopes' integral over an interval misses the values'
+/// difference, relative to the slopes' size (a defect: of the order of 1);
+/// 0 where the miss is within ten times the quadrature's own error
+/// (Boole's rule against Simpson's on the same samples): a ribbon too steep
+/// for the interval, not a defect.
+double slopeValueDisagreement(const IntervalSamples &x, double h) {
+  double worst = 0;
+  for (std::size_t d = 0; d < x.dims; ++d) {
+    const double difference = x.value(5, d) - x.value(0, d), integral = booleDifference(x.slopes, x.dims, d, h);
+    const double quadratureError = std::abs(integral - simpsonDifference(x.slopes, x.dims, d, h));
+    double steepest = 0;
+    for (int k = 0; k < 10; ++k) steepest = std::max(steepest, std::abs(x.slope(k, d)));
+    const double gap = std::abs(integral - difference);
+    if (gap > 10 * quadratureError) worst = std::max(worst, gap / (h * steepest + 1e-300));
+  }
+  return worst;
+}
+
+/// The intervals that stayed short of the tolerances at the depth limit.
+struct Unresolved {
+  std::size_t count = 0;
+  Interval worst{0, 0, 0};
+  double valueGap = 0, slopeGap = 0; ///< on the worst, absolute
+  double disagreement = 0;           ///< on the worst (slopeValueDisagreement)
+  void add(const Interval &interval, const Miss &miss, const IntervalSamples &x) {
+    ++count;
+    if (miss.value + miss.slope <= valueGap + slopeGap) return;
+    worst = interval, valueGap = miss.value, slopeGap = miss.slope;
+    disagreement = slopeValueDisagreement(x, interval.b - interval.a);
+  }
+};
+
+/// Strict: any more than a stray kink's intervals short of the tolerances
+/// stop the build. Derivatives that disagree with the values are a defect
+/// of the engine; a ribbon that only varies too fast for the table is the
+/// input's (its parameterization), said as such.
+void throwIfUnresolved(const Unresolved &u, double scale) {
+  if (u.count <= kMaxUnresolved) return;
+  const std::string missed =
+      "ribbon table: " + std::to_string(u.count) + " intervals miss the tolerance at the depth limit (worst on [" +
+      shortNumber(u.worst.a, 9) + ", " + shortNumber(u.worst.b, 9) + "]: value gap " +
+      shortNumber(u.valueGap / scale, 3) + ", slope gap " + shortNumber(u.slopeGap / scale, 3) +
+      " of the ribbon's size); ";
+  if (u.disagreement > kDisagreement)
+    throw InternalError(missed + "the exact derivatives disagree with the values (their integral misses the "
+                                 "values' difference by " + shortNumber(u.disagreement, 3) + " of the slopes' size)");
+  throw InputError({}, {},
+                   missed + "the ribbon's derivatives grow too fast there for the table (derivatives and values "
+                            "agree to " + shortNumber(u.disagreement, 3) + "): a parameterization far from "
+                            "uniform, such as extreme weights or crowded knots");
+}
+
+/// An interval of the finished table with its interpolant (quinticHermite).
+struct FittedInterval {
+  double a, b;
+  std::vector<double> coefficients;
+};
+
+/// The table's intervals in order of s: the intervals between `edges`,
+/// bisected (all pending intervals sampled in one call of `exact` per
+/// round) until each interpolant meets the tolerances or refinement stops
+/// (kMaxDepth, kDeepestDepth). The largest misses accepted, relative to
+/// the ribbon's size, go to valueError and slopeError.
+std::vector<FittedInterval> fitIntervals(std::size_t dims, const std::vector<double> &edges,
+                                         const RibbonTable::Exact &exact, double &valueError, double &slopeError) {
   std::vector<Interval> pending;
   for (std::size_t j = 0; j + 1 < edges.size(); ++j) pending.push_back({edges[j], edges[j + 1], 0});
-  struct Accepted {
-    double a, b;
-    std::vector<double> coefficients;
-  };
-  std::vector<Accepted> accepted;
+  std::vector<FittedInterval> fitted;
   std::vector<double> params, values, slopes;
   double scale = -1;
-  std::size_t unresolved = 0;
-  Interval worstUnresolved{0, 0, 0};
-  double worstValueGap = 0, worstSlopeGap = 0;
-  // On the worst of them: how far the slopes' integral misses the values'
-  // difference, relative to the slopes' size (a defect: of the order of 1).
-  double worstDisagreement = 0;
-  const std::size_t D = static_cast<std::size_t>(dims);
+  Unresolved unresolved;
   while (!pending.empty()) {
     params.resize(pending.size() * kPerInterval);
-    for (std::size_t j = 0; j < pending.size(); ++j) {
-      const double a = pending[j].a, b = pending[j].b;
-      const double h = b - a, step = std::min(0x1p-13, h / 8);
-      double *p = params.data() + j * kPerInterval;
-      // The ends one ulp inside: on a segment break the exact ribbon takes
-      // the piece of the side it is asked from.
-      p[0] = std::nextafter(a, b), p[5] = std::nextafter(b, a);
-      for (int k = 1; k <= 4; ++k) p[k] = a + k * step, p[5 + k] = b - k * step;
-      p[10] = a + kValueCheck * h, p[11] = a + kSlopeCheck * h;
-    }
-    values.resize(params.size() * D), slopes.resize(params.size() * D);
+    for (std::size_t j = 0; j < pending.size(); ++j)
+      intervalParameters(pending[j].a, pending[j].b, params.data() + j * kPerInterval);
+    values.resize(params.size() * dims), slopes.resize(params.size() * dims);
     exact(params, values.data(), slopes.data());
     if (scale < 0) {
       scale = 0;
@@ -159,104 +272,61 @@ RibbonTable::RibbonTable(int dims, std::vector<double> breaks, const Exact &exac
     std::vector<Interval> next;
     for (std::size_t j = 0; j < pending.size(); ++j) {
       const auto [a, b, depth, parentMiss] = pending[j];
-      const double h = b - a, step = std::min(0x1p-13, h / 8);
-      const double *v = values.data() + j * kPerInterval * D, *sl = slopes.data() + j * kPerInterval * D;
-      auto at = [&](const double *base, int point, std::size_t d) { return base[static_cast<std::size_t>(point) * D + d]; };
-      std::vector<double> c(6 * D);
-      for (std::size_t d = 0; d < D; ++d) {
-        // Second derivatives by fourth-order one-sided differences of the
-        // exact first ones, the stencil inside the interval.
-        constexpr double w[5] = {-25, 48, -36, 16, -3};
-        double second0 = 0, second1 = 0;
-        for (int k = 0; k < 5; ++k) second0 += w[k] * at(sl, k, d), second1 += w[k] * at(sl, 5 + k, d);
-        second0 /= 12 * step, second1 /= -12 * step;
-        const double f0 = at(v, 0, d), m0 = h * at(sl, 0, d), m1 = h * at(sl, 5, d);
-        const double k0 = h * h * second0, k1 = h * h * second1;
-        const double df = h <= kWidestQuadratureInterval ? booleDifference(sl, D, d, h) : at(v, 5, d) - f0;
-        c[d] = f0;
-        c[D + d] = m0;
-        c[2 * D + d] = 0.5 * k0;
-        c[3 * D + d] = 10 * df - 6 * m0 - 4 * m1 - 0.5 * (3 * k0 - k1);
-        c[4 * D + d] = -15 * df + 8 * m0 + 7 * m1 + 0.5 * (3 * k0 - 2 * k1);
-        c[5 * D + d] = 6 * df - 3 * m0 - 3 * m1 - 0.5 * (k0 - k1);
-      }
-      std::array<double, kMaxDims> value{}, slope{};
-      double valueError = 0, slopeError = 0;
-      polynomial(c.data(), dims, dims, kValueCheck, value.data(), nullptr);
-      for (std::size_t d = 0; d < D; ++d) valueError = std::max(valueError, std::abs(value[d] - at(v, 10, d)));
-      polynomial(c.data(), dims, dims, kSlopeCheck, value.data(), slope.data());
-      for (std::size_t d = 0; d < D; ++d) {
-        valueError = std::max(valueError, std::abs(value[d] - at(v, 11, d)));
-        slopeError = std::max(slopeError, std::abs(slope[d] / h - at(sl, 11, d)));
-      }
-      const bool good = valueError <= kValueTolerance * scale && slopeError <= kSlopeTolerance * scale;
-      const double miss = std::max(valueError / (kValueTolerance * scale), slopeError / (kSlopeTolerance * scale));
-      const bool converging = depth < kDeepestDepth && miss * kConvergence < parentMiss;
+      const double h = b - a;
+      const IntervalSamples x{values.data() + j * kPerInterval * dims, slopes.data() + j * kPerInterval * dims, dims};
+      std::vector<double> c = quinticHermite(x, h);
+      const Miss miss = checkMiss(c, x, h);
+      const bool good = miss.value <= kValueTolerance * scale && miss.slope <= kSlopeTolerance * scale;
+      const double over = std::max(miss.value / (kValueTolerance * scale), miss.slope / (kSlopeTolerance * scale));
+      const bool converging = depth < kDeepestDepth && over * kConvergence < parentMiss;
       if (!good && (depth < kMaxDepth || converging)) {
         const double mid = 0.5 * (a + b);
-        next.push_back({a, mid, depth + 1, miss});
-        next.push_back({mid, b, depth + 1, miss});
+        next.push_back({a, mid, depth + 1, over});
+        next.push_back({mid, b, depth + 1, over});
         continue;
       }
-      if (!good) {
-        ++unresolved;
-        if (valueError + slopeError > worstValueGap + worstSlopeGap) {
-          worstUnresolved = pending[j], worstValueGap = valueError, worstSlopeGap = slopeError;
-          // A miss within ten times the quadrature's own error (Boole's rule
-          // against Simpson's on the same samples) is the quadrature's: a
-          // ribbon too steep for the interval, not a defect.
-          worstDisagreement = 0;
-          for (std::size_t d = 0; d < D; ++d) {
-            const double difference = at(v, 5, d) - at(v, 0, d), integral = booleDifference(sl, D, d, h);
-            const double quadratureError = std::abs(integral - simpsonDifference(sl, D, d, h));
-            double steepest = 0;
-            for (int k = 0; k < 10; ++k) steepest = std::max(steepest, std::abs(at(sl, k, d)));
-            const double gap = std::abs(integral - difference);
-            if (gap > 10 * quadratureError) worstDisagreement = std::max(worstDisagreement, gap / (h * steepest + 1e-300));
-          }
-        }
-      }
-      valueError_ = std::max(valueError_, valueError / scale);
-      slopeError_ = std::max(slopeError_, slopeError / scale);
-      accepted.push_back({a, b, std::move(c)});
+      if (!good) unresolved.add(pending[j], miss, x);
+      valueError = std::max(valueError, miss.value / scale);
+      slopeError = std::max(slopeError, miss.slope / scale);
+      fitted.push_back({a, b, std::move(c)});
     }
     pending = std::move(next);
   }
-  // Strict: any more than a stray kink's intervals short of the tolerances
-  // stop the build. Derivatives that disagree with the values are a defect
-  // of the engine; a ribbon that only varies too fast for the table is the
-  // input's (its parameterization), said as such.
-  if (unresolved > kMaxUnresolved) {
-    const std::string missed =
-        "ribbon table: " + std::to_string(unresolved) + " intervals miss the tolerance at the depth limit (worst on [" +
-        shortNumber(worstUnresolved.a, 9) + ", " + shortNumber(worstUnresolved.b, 9) + "]: value gap " +
-        shortNumber(worstValueGap / scale, 3) + ", slope gap " + shortNumber(worstSlopeGap / scale, 3) +
-        " of the ribbon's size); ";
-    if (worstDisagreement > kDisagreement)
-      throw InternalError(missed + "the exact derivatives disagree with the values (their integral misses the "
-                                   "values' difference by " + shortNumber(worstDisagreement, 3) + " of the slopes' size)");
-    throw InputError({}, {},
-                     missed + "the ribbon's derivatives grow too fast there for the table (derivatives and values "
-                              "agree to " + shortNumber(worstDisagreement, 3) + "): a parameterization far from "
-                              "uniform, such as extreme weights or crowded knots");
-  }
+  throwIfUnresolved(unresolved, scale);
+  std::sort(fitted.begin(), fitted.end(), [](const FittedInterval &x, const FittedInterval &y) { return x.a < y.a; });
+  return fitted;
+}
 
-  std::sort(accepted.begin(), accepted.end(), [](const Accepted &x, const Accepted &y) { return x.a < y.a; });
-  for (const Accepted &x : accepted) {
-    starts_.push_back(x.a);
-    ends_.push_back(x.b);
-    inverseWidths_.push_back(1 / (x.b - x.a));
-    const int rowDims = std::min(dims_, paddedDims_);
-    for (int row = 0; row < 6; ++row) {
-      const auto from = x.coefficients.begin() + row * dims_;
-      coefficients_.insert(coefficients_.end(), from, from + rowDims);
-      coefficients_.insert(coefficients_.end(), static_cast<std::size_t>(paddedDims_ - rowDims), 0.0);
-    }
-    for (int d = rowDims; d < dims_; ++d) {
-      for (int row = 0; row < 6; ++row) coefficients_.push_back(x.coefficients[row * dims_ + d]);
-      coefficients_.insert(coefficients_.end(), 2, 0.0);
-    }
+} // namespace
+
+RibbonTable::RibbonTable(int dims, std::vector<double> breaks, const Exact &exact)
+    // Rows of a multiple of 4 (kernels::PolynomialTable), a lone last
+    // coordinate as a tail: nine (G² P, T, C) are rows of 8 and one tail.
+    : dims_(dims), paddedDims_(dims % 4 == 1 ? dims - 1 : (dims + 3) / 4 * 4) {
+  CURVENET_CHECK(dims >= 1 && dims <= kMaxDims, "ribbon table: " + std::to_string(dims) + " coordinates");
+  const std::vector<double> edges = tableEdges(std::move(breaks));
+  for (const FittedInterval &x : fitIntervals(static_cast<std::size_t>(dims), edges, exact, valueError_, slopeError_))
+    appendInterval(x.a, x.b, x.coefficients.data());
+  buildLookup();
+}
+
+void RibbonTable::appendInterval(double a, double b, const double *coefficients) {
+  starts_.push_back(a);
+  ends_.push_back(b);
+  inverseWidths_.push_back(1 / (b - a));
+  const int rowDims = std::min(dims_, paddedDims_);
+  for (int row = 0; row < 6; ++row) {
+    const double *from = coefficients + row * dims_;
+    coefficients_.insert(coefficients_.end(), from, from + rowDims);
+    coefficients_.insert(coefficients_.end(), static_cast<std::size_t>(paddedDims_ - rowDims), 0.0);
   }
+  for (int d = rowDims; d < dims_; ++d) {
+    for (int row = 0; row < 6; ++row) coefficients_.push_back(coefficients[row * dims_ + d]);
+    coefficients_.insert(coefficients_.end(), 2, 0.0);
+  }
+}
+
+void RibbonTable::buildLookup() {
   // Lookup grid: cell c holds the first interval reaching c / cells. Cells
   // no wider than half the narrowest interval (up to 2¹⁶ of them) keep the
   // forward search to a step or two.

@@ -60,6 +60,12 @@ public:
   std::size_t memory() const;
 
 private:
+  /// Appends interval [a, b] with its 6 rows of dims_ coefficients
+  /// (t⁰ … t⁵) in the kernel's layout (coefficients_).
+  void appendInterval(double a, double b, const double *coefficients);
+  /// The lookup grid over the intervals (cells_, cellFirst_, steps_,
+  /// cellFirstEnd_).
+  void buildLookup();
   std::uint32_t interval(double s) const {
     const double scaled = s * static_cast<double>(cells_); // NaN or out of [0, 1]: the end cells
     const std::size_t cell = !(scaled > 0) ? 0
