@@ -500,15 +500,38 @@ FaceBuild buildFace(const Impl &impl, int f) {
         parabolic[i] = parabolicOf(ribbons[i]);
       }
   }
+  auto folds = [f](const Patch &patch) {
+    try {
+      return patchFolds(patch);
+    } catch (const NonFinitePatch &) {
+      // Degenerate input (e.g. coincident corners after the tolerance, a
+      // collapsed side) that the topology checks let through: refuse it here
+      // rather than hand out NaN points.
+      throw InputError("", "face " + std::to_string(f),
+                       "the patch cannot be evaluated (non-finite points inside the face): the loop is degenerate");
+    }
+  };
+  const bool g1 = impl.options.scheme == Scheme::GregoryG1;
+  std::vector<LinearRibbon> linear;
+  if (g1) linear = ribbons;
   result.patch = std::make_shared<const Patch>(std::move(ribbons), impl.options, std::move(parabolic), std::move(blendShares));
-  try {
-    result.folded = patchFolds(*result.patch);
-  } catch (const NonFinitePatch &) {
-    // Degenerate input (e.g. coincident corners after the tolerance, a
-    // collapsed side) that the topology checks let through: refuse it here
-    // rather than hand out NaN points.
-    throw InputError("", "face " + std::to_string(f),
-                     "the patch cannot be evaluated (non-finite points inside the face): the loop is degenerate");
+  result.folded = folds(*result.patch);
+  if (result.folded && g1) {
+    // gregory-g1: a patch that folds with the corner shares its ribbons ask
+    // for (cornerBlendShares) takes eq. 17's corners alone, then the
+    // two-ribbon blend at every corner, whichever first does not fold
+    // (docs/surfaces.md, Folds: corners far from the regular n-gon's angle).
+    const std::vector<double> &asked = result.patch->blendShares();
+    for (const double share : {0.0, 1.0}) {
+      if (std::all_of(asked.begin(), asked.end(), [share](double mu) { return mu == share; })) continue;
+      auto candidate = std::make_shared<const Patch>(linear, impl.options, std::vector<ParabolicRibbon>{},
+                                                     std::vector<double>(linear.size(), share));
+      if (!folds(*candidate)) {
+        result.patch = std::move(candidate);
+        result.folded = false;
+        break;
+      }
+    }
   }
   return result;
 }
