@@ -414,6 +414,41 @@ const NormalFence *fenceOf(const Impl &impl, int e, int f) {
   return second ? impl.creaseFences[e].get() : impl.fences[e].get();
 }
 
+/// gregory-g1: the first of these that does not fold, for a patch that
+/// folds as built (docs/surfaces.md, Folds). Eq. 17's corners alone, then
+/// the two-ribbon blend at every corner (corners far from the regular
+/// n-gon's angle); then the same with the ribbons' cross-derivatives at
+/// three quarters and at half their length, which the end targets take
+/// from the neighbouring curves' parameter speed, whatever the face's
+/// extent across (a planar half disc with a wavy rim reached past its
+/// diameter). Each stays G¹: T keeps its fence's tangent plane, and both
+/// corner forms meet each ribbon to first order on its own side whatever
+/// the two ribbons' disagreement at the corner. `built` when all fold.
+template <class Folds>
+FaceBuild unfoldedG1(const FaceBuild &built, const std::vector<LinearRibbon> &linear,
+                     const std::vector<Vec3> &startTargets, const std::vector<Vec3> &endTargets,
+                     const SurfaceOptions &options, const Folds &folds) {
+  const std::vector<double> &asked = built.patch->blendShares();
+  for (const double scale : {1.0, 0.75, 0.5}) {
+    std::vector<LinearRibbon> ribbons = linear;
+    if (scale != 1.0)
+      for (std::size_t i = 0; i < ribbons.size(); ++i)
+        ribbons[i].setEndConditions(startTargets[i] * scale, endTargets[i] * scale, LinearRibbon::ScalarBlend::Linear);
+    for (const double share : {0.0, 1.0}) {
+      if (scale == 1.0 && std::all_of(asked.begin(), asked.end(), [share](double mu) { return mu == share; })) continue;
+      auto candidate = std::make_shared<const Patch>(ribbons, options, std::vector<ParabolicRibbon>{},
+                                                     std::vector<double>(ribbons.size(), share));
+      if (!folds(*candidate)) {
+        FaceBuild result = built;
+        result.patch = std::move(candidate);
+        result.folded = false;
+        return result;
+      }
+    }
+  }
+  return built;
+}
+
 FaceBuild buildFace(const Impl &impl, int f) {
   const Face &face = impl.network.faces()[f];
   const bool g2 = impl.options.scheme == Scheme::GregoryG2;
@@ -516,23 +551,7 @@ FaceBuild buildFace(const Impl &impl, int f) {
   if (g1) linear = ribbons;
   result.patch = std::make_shared<const Patch>(std::move(ribbons), impl.options, std::move(parabolic), std::move(blendShares));
   result.folded = folds(*result.patch);
-  if (result.folded && g1) {
-    // gregory-g1: a patch that folds with the corner shares its ribbons ask
-    // for (cornerBlendShares) takes eq. 17's corners alone, then the
-    // two-ribbon blend at every corner, whichever first does not fold
-    // (docs/surfaces.md, Folds: corners far from the regular n-gon's angle).
-    const std::vector<double> &asked = result.patch->blendShares();
-    for (const double share : {0.0, 1.0}) {
-      if (std::all_of(asked.begin(), asked.end(), [share](double mu) { return mu == share; })) continue;
-      auto candidate = std::make_shared<const Patch>(linear, impl.options, std::vector<ParabolicRibbon>{},
-                                                     std::vector<double>(linear.size(), share));
-      if (!folds(*candidate)) {
-        result.patch = std::move(candidate);
-        result.folded = false;
-        break;
-      }
-    }
-  }
+  if (result.folded && g1) result = unfoldedG1(result, linear, startTargets, endTargets, impl.options, folds);
   return result;
 }
 
