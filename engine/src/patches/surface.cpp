@@ -66,8 +66,7 @@ struct NonFinitePatch {};
 
 constexpr int kFoldRows = 8;
 
-bool patchFolds(const Patch &patch) {
-  constexpr int rows = kFoldRows;
+bool patchFolds(const Patch &patch, int rows = kFoldRows) {
   const RegularDomain &domain = patch.domain();
   const int n = domain.sides();
   auto normalOf = [](const DualVec3 &r) {
@@ -423,12 +422,18 @@ const NormalFence *fenceOf(const Impl &impl, int e, int f) {
 /// extent across (a planar half disc with a wavy rim reached past its
 /// diameter). Each stays G¹: T keeps its fence's tangent plane, and both
 /// corner forms meet each ribbon to first order on its own side whatever
-/// the two ribbons' disagreement at the corner. `built` when all fold.
+/// the two ribbons' disagreement at the corner. A variant is taken when it
+/// does not fold on the fold grid nor on one kFineFoldRows fine (box.obj's
+/// triangles with the blend pass the first and fold near their centre on
+/// the second; at 3/4 length they pass both); failing that, the first that
+/// passes the fold grid; `built` when all fold.
+constexpr int kFineFoldRows = 4 * kFoldRows;
 template <class Folds>
 FaceBuild unfoldedG1(const FaceBuild &built, const std::vector<LinearRibbon> &linear,
                      const std::vector<Vec3> &startTargets, const std::vector<Vec3> &endTargets,
                      const SurfaceOptions &options, const Folds &folds) {
   const std::vector<double> &asked = built.patch->blendShares();
+  std::shared_ptr<const Patch> coarse;
   for (const double scale : {1.0, 0.75, 0.5}) {
     std::vector<LinearRibbon> ribbons = linear;
     if (scale != 1.0)
@@ -438,15 +443,21 @@ FaceBuild unfoldedG1(const FaceBuild &built, const std::vector<LinearRibbon> &li
       if (scale == 1.0 && std::all_of(asked.begin(), asked.end(), [share](double mu) { return mu == share; })) continue;
       auto candidate = std::make_shared<const Patch>(ribbons, options, std::vector<ParabolicRibbon>{},
                                                      std::vector<double>(ribbons.size(), share));
-      if (!folds(*candidate)) {
-        FaceBuild result = built;
-        result.patch = std::move(candidate);
-        result.folded = false;
-        return result;
+      if (folds(*candidate, kFoldRows)) continue;
+      const bool fine = !folds(*candidate, kFineFoldRows);
+      if (!coarse) coarse = candidate;
+      if (fine) {
+        coarse = std::move(candidate);
+        break;
       }
     }
+    if (coarse && !folds(*coarse, kFineFoldRows)) break;
   }
-  return built;
+  if (!coarse) return built;
+  FaceBuild result = built;
+  result.patch = std::move(coarse);
+  result.folded = false;
+  return result;
 }
 
 FaceBuild buildFace(const Impl &impl, int f) {
@@ -535,9 +546,9 @@ FaceBuild buildFace(const Impl &impl, int f) {
         parabolic[i] = parabolicOf(ribbons[i]);
       }
   }
-  auto folds = [f](const Patch &patch) {
+  auto folds = [f](const Patch &patch, int rows = kFoldRows) {
     try {
-      return patchFolds(patch);
+      return patchFolds(patch, rows);
     } catch (const NonFinitePatch &) {
       // Degenerate input (e.g. coincident corners after the tolerance, a
       // collapsed side) that the topology checks let through: refuse it here
