@@ -423,18 +423,23 @@ const NormalFence *fenceOf(const Impl &impl, int e, int f) {
 /// diameter). Each stays G¹: T keeps its fence's tangent plane, and both
 /// corner forms meet each ribbon to first order on its own side whatever
 /// the two ribbons' disagreement at the corner. A variant is taken when it
-/// does not fold on the fold grid nor on one kFineFoldRows fine (box.obj's
+/// folds neither on the fold grid nor on one of kFineFoldRows rows (box.obj's
 /// triangles with the blend pass the first and fold near their centre on
 /// the second; at 3/4 length they pass both); failing that, the first that
 /// passes the fold grid; `built` when all fold.
-constexpr int kFineFoldRows = 4 * kFoldRows;
+/// Three times the fold grid, below Patch::kTableResolution: no ribbon
+/// tables are built for a variant.
+constexpr int kFineFoldRows = 3 * kFoldRows;
+static_assert(kFineFoldRows < Patch::kTableResolution);
 template <class Folds>
 FaceBuild unfoldedG1(const FaceBuild &built, const std::vector<LinearRibbon> &linear,
                      const std::vector<Vec3> &startTargets, const std::vector<Vec3> &endTargets,
                      const SurfaceOptions &options, const Folds &folds) {
   const std::vector<double> &asked = built.patch->blendShares();
   std::shared_ptr<const Patch> coarse;
+  bool fine = false;
   for (const double scale : {1.0, 0.75, 0.5}) {
+    if (fine) break;
     std::vector<LinearRibbon> ribbons = linear;
     if (scale != 1.0)
       for (std::size_t i = 0; i < ribbons.size(); ++i)
@@ -444,14 +449,10 @@ FaceBuild unfoldedG1(const FaceBuild &built, const std::vector<LinearRibbon> &li
       auto candidate = std::make_shared<const Patch>(ribbons, options, std::vector<ParabolicRibbon>{},
                                                      std::vector<double>(ribbons.size(), share));
       if (folds(*candidate, kFoldRows)) continue;
-      const bool fine = !folds(*candidate, kFineFoldRows);
-      if (!coarse) coarse = candidate;
-      if (fine) {
-        coarse = std::move(candidate);
-        break;
-      }
+      fine = !folds(*candidate, kFineFoldRows);
+      if (fine || !coarse) coarse = std::move(candidate);
+      if (fine) break;
     }
-    if (coarse && !folds(*coarse, kFineFoldRows)) break;
   }
   if (!coarse) return built;
   FaceBuild result = built;
