@@ -177,3 +177,28 @@ TEST(SplitLoops, ManySidedLoopsNeedConnectionCurves) {
     EXPECT_EQ(e.element(), "face 0") << e.what();
   }
 }
+
+// A planar strip 15 times longer than wide whose long side bends concavely
+// by 90° into a foot at its end (sewing_machine.obj's L-shaped faces): every
+// cut between corners and side midpoints leaves the bend in a part that
+// cannot fan from its centre, so none is taken, and the unsplit patch folds.
+// A cut from a quarter point splits the foot off; no part folds.
+TEST(SplitLoops, ConcavelyBentStripIsSplitAtAQuarterPoint) {
+  auto bezier = [](std::vector<Vec3> p) { return BSplineCurve::bezier(std::move(p)); };
+  auto line = [&](Vec3 a, Vec3 b) { return bezier({a, a + (b - a) / 3.0, a + (b - a) * (2 / 3.0), b}); };
+  const Vec3 c0{0, 0, 0}, c1{0, 1.5, 0}, c2{0.1, 1.5, 0}, c3{0.4, 0.12, 0}, c4{0.4, 0, 0};
+  NetworkDescription d;
+  d.curves = {line(c0, c1), line(c1, c2), bezier({c2, {0.1, 0.3, 0}, {0.12, 0.12, 0}, c3}), line(c3, c4), line(c4, c0)};
+  d.faces = {{{{0, 0, 1}, {1, 0, 1}, {2, 0, 1}, {3, 0, 1}, {4, 0, 1}}, "strip"}};
+  NetworkDescription whole = d;
+  whole.connectionCurves = false;
+  const Network unsplit = Network::build(whole);
+  EXPECT_EQ(Surface::build(unsplit, {Scheme::GregoryG1}).foldedFaces().size(), 1u);
+  const Network split = Network::build(d);
+  ASSERT_GT(split.faces().size(), 1u);
+  for (const Face &face : split.faces()) EXPECT_EQ(face.partOf, 0);
+  for (Scheme scheme : {Scheme::GregoryG1, Scheme::CompositeRibbon, Scheme::GregoryG2}) {
+    SCOPED_TRACE(schemeName(scheme));
+    EXPECT_TRUE(Surface::build(split, {scheme}).foldedFaces().empty());
+  }
+}

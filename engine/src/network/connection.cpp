@@ -107,14 +107,16 @@ LoopPoint cornerPoint(const std::vector<BSplineCurve> &curves, const Loop &loop,
   return p;
 }
 
+/// The point at `fraction` along side k (its midpoint by default).
 LoopPoint midPoint(const std::vector<BSplineCurve> &curves, const Loop &loop, int k, const Vec3 &faceNormal,
-                   const std::optional<ReferenceSurface> &reference) {
+                   const std::optional<ReferenceSurface> &reference, double fraction = 0.5) {
   const int n = static_cast<int>(loop.size());
-  const SidePoint m = sidePoint(curves, loop[k], 0.5);
+  const SidePoint m = sidePoint(curves, loop[k], fraction);
   if (auto r = referenceNormal(reference, m.point, m.tangent, faceNormal)) return {m.point, m.tangent, m.tangent, *r};
-  // Between the side's two corner planes.
-  const Vec3 average = cornerPoint(curves, loop, k, faceNormal, reference).normal +
-                       cornerPoint(curves, loop, (k + 1) % n, faceNormal, reference).normal;
+  // Between the side's two corner planes, weighted by the distance along it.
+  const Vec3 start = cornerPoint(curves, loop, k, faceNormal, reference).normal,
+             end = cornerPoint(curves, loop, (k + 1) % n, faceNormal, reference).normal;
+  const Vec3 average = fraction == 0.5 ? start + end : start * (2 * (1 - fraction)) + end * (2 * fraction);
   return {m.point, m.tangent, m.tangent, orthogonalTo(norm(average) > 1e-9 ? average : faceNormal, m.tangent)};
 }
 
@@ -383,18 +385,41 @@ public:
     const Vec3 faceNormal = newellNormal(curves_, loop);
     if (!(norm(faceNormal) > 0)) return {loop};
     const std::vector<Vec2> plan = planSamples(loop, faceNormal);
-    const int samples = static_cast<int>(plan.size());
     const bool manySided = n > kMaxPartSides;
     const bool uneven = n >= 5 && sideLengthRatio(loop) > kUnevenSideRatio;
     if (!manySided && !uneven) return {loop};
+    // Connection curves between corners and side midpoints first; where none
+    // is acceptable, also from and to the quarter points of the sides. A
+    // side that bends concavely (sewing_machine.obj's L-shaped strips: a
+    // side turning 88° against the loop, the strip 16 times longer than
+    // wide) leaves every part with its bend unable to fan from its centre,
+    // and only a cut at the bend's end of the side splits it off.
+    for (const int step : {2, 1}) {
+      std::optional<std::vector<Loop>> parts = evenSplit(loop, plan, faceNormal, step, depth);
+      if (parts) return std::move(*parts);
+    }
+    return {loop};
+  }
+
+  /// evenParts' split of `loop` along the best acceptable connection
+  /// curve, with ends at samples that are multiples of `step` (2: corners
+  /// and side midpoints; 1: also quarter points), at least one of them off
+  /// the multiples of 2 when step is 1 (those were tried); nullopt if none.
+  std::optional<std::vector<Loop>> evenSplit(const Loop &loop, const std::vector<Vec2> &plan, const Vec3 &faceNormal,
+                                             int step, int depth) {
+    const int n = static_cast<int>(loop.size());
+    const int samples = static_cast<int>(plan.size());
+    const bool manySided = n > kMaxPartSides;
+    const bool uneven = n >= 5 && sideLengthRatio(loop) > kUnevenSideRatio;
     struct Candidate {
       int from, to;
       int sides;    // of the larger part
       double worse; // side ratio of the worse part
     };
     std::vector<Candidate> candidates;
-    for (int a = 0; a < samples; a += 2)
-      for (int b = a + 2; b < samples; b += 2) {
+    for (int a = 0; a < samples; a += step)
+      for (int b = a + 2; b < samples; b += step) {
+        if (step == 1 && a % 2 == 0 && b % 2 == 0) continue;
         const std::vector<PlanPiece> first = outline(plan, a, b), second = outline(plan, b, a);
         const int fewer = static_cast<int>(std::min(first.size(), second.size()));
         const int more = static_cast<int>(std::max(first.size(), second.size()));
@@ -426,7 +451,7 @@ public:
       for (Loop &l : evenParts(second, depth + 1)) parts.push_back(std::move(l));
       return parts;
     }
-    return {loop};
+    return std::nullopt;
   }
 
   const std::vector<int> &connections() const { return connections_; }
@@ -601,7 +626,12 @@ private:
     const int samples = static_cast<int>(plan.size());
     std::vector<PlanPiece> pieces;
     forEachPiece(samples, from, to, [&](int at, int end) {
-      pieces.push_back({plan[at], plan[(at + (end - at) / 2) % samples]});
+      // A piece of an odd number of quarters (a quarter point at one end)
+      // has no sample in its middle: the mean of the two nearest.
+      const int half = (end - at) / 2;
+      const Vec2 middle = (end - at) % 2 == 0 ? plan[(at + half) % samples]
+                                              : (plan[(at + half) % samples] + plan[(at + half + 1) % samples]) * 0.5;
+      pieces.push_back({plan[at], middle});
     });
     if (from != to) pieces.push_back({plan[to], (plan[to] + plan[from]) * 0.5});
     return pieces;
@@ -637,8 +667,9 @@ private:
 
   LoopPoint loopPointAt(const Loop &loop, int sample, const Vec3 &faceNormal) const {
     const int side = sample / kSamplesPerSide;
-    return sample % kSamplesPerSide == 0 ? cornerPoint(curves_, loop, side, faceNormal, reference_)
-                                         : midPoint(curves_, loop, side, faceNormal, reference_);
+    return sample % kSamplesPerSide == 0
+               ? cornerPoint(curves_, loop, side, faceNormal, reference_)
+               : midPoint(curves_, loop, side, faceNormal, reference_, double(sample % kSamplesPerSide) / kSamplesPerSide);
   }
 
   std::vector<BSplineCurve> &curves_;

@@ -351,7 +351,10 @@ Patch::Patch(std::vector<LinearRibbon> ribbons, const SurfaceOptions &options, s
     kernelCorners_.push_back(cornerVectors(i));
     if (options_.scheme == Scheme::GregoryG2) cornerTerms_.push_back(kernels::gregoryCornerTerms(kernelCorners_[i]));
   }
-  if (options_.scheme == Scheme::GregoryG1) blendShare_ = cornerBlendShares(ribbons_);
+  if (options_.scheme == Scheme::GregoryG1) {
+    blendShare_ = blendShares.empty() ? cornerBlendShares(ribbons_) : std::move(blendShares);
+    CURVENET_CHECK(blendShare_.size() == ribbons_.size(), "one blend share per corner");
+  }
   if (options_.scheme == Scheme::GregoryG2) {
     blendShare_ = blendShares.empty() ? cornerBlendShares(ribbons_, parabolic_) : std::move(blendShares);
     CURVENET_CHECK(blendShare_.size() == ribbons_.size(), "one blend share per corner");
@@ -400,8 +403,17 @@ DualVec3 Patch::gregory(Dual u, Dual v) const {
   std::array<RibbonJet, kMaxSides> jet;
   if (options_.sweepline != Sweepline::Radial)
     domain_.hermiteSweepSides(u, v, options_.sweepline == Sweepline::QuinticHermite, s);
+  // With a share of the two-ribbon blend, λ = t² / (s² + t²) turns with the
+  // direction from the corner: its gradient grows as 1 / r while the two
+  // ribbons' gap shrinks as r². At a corner evaluated along a side, s and t
+  // are rounding errors (1e-17) and so is the gap, which the gradient then
+  // blows up (a normal 69° off at a doghead corner): a parameter within a
+  // few ulps of a side's end is that end, as in gregoryG2From.
+  const bool blended = std::any_of(blendShare_.begin(), blendShare_.end(), [](double mu) { return mu > 0; });
   for (int i = 0; i < n; ++i) {
     if (options_.sweepline == Sweepline::Radial) s[i] = domain_.radialSideParameter(i, u, v);
+    if (blended && std::abs(s[i].v) <= kSweepEndSnap) s[i].v = 0;
+    if (blended && std::abs(s[i].v - 1) <= kSweepEndSnap) s[i].v = 1;
     distance[i] = domain_.perpendicularDistance(i, u, v);
     jet[i] = ribbons_[i].at(ribbons_[i].snap(std::clamp(s[i].v, 0.0, 1.0)));
   }

@@ -76,8 +76,8 @@ class Patch {
 public:
   /// `parabolic` (one per side, over the same linear ribbons) is required by
   /// gregory-g2 and ignored by the other schemes.
-  /// gregory-g2: `blendShares` (one per corner, see cornerBlendShares) or
-  /// empty to compute them from the ribbons.
+  /// Gregory schemes: `blendShares` (one per corner, see cornerBlendShares)
+  /// or empty to compute them from the ribbons.
   Patch(std::vector<LinearRibbon> ribbons, const SurfaceOptions &options,
         std::vector<ParabolicRibbon> parabolic = {}, std::vector<double> blendShares = {});
 

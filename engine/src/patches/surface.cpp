@@ -66,8 +66,7 @@ struct NonFinitePatch {};
 
 constexpr int kFoldRows = 8;
 
-bool patchFolds(const Patch &patch) {
-  constexpr int rows = kFoldRows;
+bool patchFolds(const Patch &patch, int rows = kFoldRows) {
   const RegularDomain &domain = patch.domain();
   const int n = domain.sides();
   auto normalOf = [](const DualVec3 &r) {
@@ -414,6 +413,54 @@ const NormalFence *fenceOf(const Impl &impl, int e, int f) {
   return second ? impl.creaseFences[e].get() : impl.fences[e].get();
 }
 
+/// gregory-g1: the first of these that does not fold, for a patch that
+/// folds as built (docs/surfaces.md, Folds). Eq. 17's corners alone, then
+/// the two-ribbon blend at every corner (corners far from the regular
+/// n-gon's angle); then the same with the ribbons' cross-derivatives at
+/// three quarters and at half their length, which the end targets take
+/// from the neighbouring curves' parameter speed, whatever the face's
+/// extent across (a planar half disc with a wavy rim reached past its
+/// diameter). Each stays G¹: T keeps its fence's tangent plane, and both
+/// corner forms meet each ribbon to first order on its own side whatever
+/// the two ribbons' disagreement at the corner. A variant is taken when it
+/// folds neither on the fold grid nor on one of kFineFoldRows rows (box.obj's
+/// triangles with the blend pass the first and fold near their centre on
+/// the second; at 3/4 length they pass both); failing that, the first that
+/// passes the fold grid; `built` when all fold.
+/// Three times the fold grid, below Patch::kTableResolution: no ribbon
+/// tables are built for a variant.
+constexpr int kFineFoldRows = 3 * kFoldRows;
+static_assert(kFineFoldRows < Patch::kTableResolution);
+template <class Folds>
+FaceBuild unfoldedG1(const FaceBuild &built, const std::vector<LinearRibbon> &linear,
+                     const std::vector<Vec3> &startTargets, const std::vector<Vec3> &endTargets,
+                     const SurfaceOptions &options, const Folds &folds) {
+  const std::vector<double> &asked = built.patch->blendShares();
+  std::shared_ptr<const Patch> coarse;
+  bool fine = false;
+  for (const double scale : {1.0, 0.75, 0.5}) {
+    if (fine) break;
+    std::vector<LinearRibbon> ribbons = linear;
+    if (scale != 1.0)
+      for (std::size_t i = 0; i < ribbons.size(); ++i)
+        ribbons[i].setEndConditions(startTargets[i] * scale, endTargets[i] * scale, LinearRibbon::ScalarBlend::Linear);
+    for (const double share : {0.0, 1.0}) {
+      if (scale == 1.0 && std::all_of(asked.begin(), asked.end(), [share](double mu) { return mu == share; })) continue;
+      auto candidate = std::make_shared<const Patch>(ribbons, options, std::vector<ParabolicRibbon>{},
+                                                     std::vector<double>(ribbons.size(), share));
+      if (folds(*candidate, kFoldRows)) continue;
+      fine = !folds(*candidate, kFineFoldRows);
+      if (fine || !coarse) coarse = std::move(candidate);
+      if (fine) break;
+    }
+  }
+  if (!coarse) return built;
+  FaceBuild result = built;
+  result.patch = std::move(coarse);
+  result.folded = false;
+  return result;
+}
+
 FaceBuild buildFace(const Impl &impl, int f) {
   const Face &face = impl.network.faces()[f];
   const bool g2 = impl.options.scheme == Scheme::GregoryG2;
@@ -500,16 +547,23 @@ FaceBuild buildFace(const Impl &impl, int f) {
         parabolic[i] = parabolicOf(ribbons[i]);
       }
   }
+  auto folds = [f](const Patch &patch, int rows = kFoldRows) {
+    try {
+      return patchFolds(patch, rows);
+    } catch (const NonFinitePatch &) {
+      // Degenerate input (e.g. coincident corners after the tolerance, a
+      // collapsed side) that the topology checks let through: refuse it here
+      // rather than hand out NaN points.
+      throw InputError("", "face " + std::to_string(f),
+                       "the patch cannot be evaluated (non-finite points inside the face): the loop is degenerate");
+    }
+  };
+  const bool g1 = impl.options.scheme == Scheme::GregoryG1;
+  std::vector<LinearRibbon> linear;
+  if (g1) linear = ribbons;
   result.patch = std::make_shared<const Patch>(std::move(ribbons), impl.options, std::move(parabolic), std::move(blendShares));
-  try {
-    result.folded = patchFolds(*result.patch);
-  } catch (const NonFinitePatch &) {
-    // Degenerate input (e.g. coincident corners after the tolerance, a
-    // collapsed side) that the topology checks let through: refuse it here
-    // rather than hand out NaN points.
-    throw InputError("", "face " + std::to_string(f),
-                     "the patch cannot be evaluated (non-finite points inside the face): the loop is degenerate");
-  }
+  result.folded = folds(*result.patch);
+  if (result.folded && g1) result = unfoldedG1(result, linear, startTargets, endTargets, impl.options, folds);
   return result;
 }
 
