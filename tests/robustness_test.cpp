@@ -331,21 +331,27 @@ TEST(RobustnessCorpus, SharedSketches) {
   if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << dir << " is absent: no sketches to run";
   // Columns as in corpus(): gregory-g1, composite-ribbon, gregory-g2.
   // Measured: gregory-g1 and composite-ribbon fold a few faces whose
-  // parametrization folds whatever the corners (not at creases); gregory-g2
-  // folds some faces of each sketch with creases (none of spherecylinder's),
-  // its vertex curvatures being fitted to curves that share no tangent plane
-  // there. Normal angles of 6.5–7.7° are at G¹ segments ending at a
-  // crease, whose two corner planes are up to 18° apart and meet halfway;
+  // parametrization folds whatever the corners (not at creases). gregory-g2
+  // folds 22 faces over the eight (49 before the direct transversal
+  // curvature stopped being refitted to the curve's own curvature, see
+  // docs/surfaces.md, Folds): iron's and sewing_machine's are faces the G¹
+  // schemes fold too, dress's the 2-sided halves gregory-g1 folds; doghead's
+  // and ellipsetorus's are thin faces whose short sides' ribbons carry a
+  // fence twist several times the end vertices' (the tangent planes at the
+  // two ends of a short, strongly bent side differ by more than the
+  // tensors there account for). Normal angles of 6.5–7.7° are at G¹
+  // segments ending at a crease, whose two corner planes are up to 18°
+  // apart and meet halfway;
   // iron's 180° is the edge between its two folded faces.
   const std::map<std::string, std::array<Expectation, 3>> rows = {
-      {"doghead.obj", {{{1, 1.05, 1e-4, 8}, {2, 1.05, 1e-4, 7}, {12, 1.05, 1e-4, 7}}}},
+      {"doghead.obj", {{{1, 1.05, 1e-4, 8}, {2, 1.05, 1e-4, 7}, {8, 1.05, 1e-4, 7}}}},
       {"spherecylinder.obj", {{kGoal, kGoal, kGoal}}},
       {"sewing_machine.obj", {{{9, 1.05, 1e-4, 1e-6}, {4, 1.05, 1e-4, 1e-6}, {5, 1.05, 1e-4, 1e-6}}}},
-      {"box.obj", {{{4, 1.05, 1e-4, 7}, {0, 1.05, 1e-4, 7}, {3, 1.05, 1e-4, 7}}}},
-      {"dress.obj", {{{2, 1.05, 1e-4, 1e-6}, kGoal, {3, 1.05, 1e-4, 1e-6}}}},
+      {"box.obj", {{{4, 1.05, 1e-4, 7}, {0, 1.05, 1e-4, 7}, {0, 1.05, 1e-4, 7}}}},
+      {"dress.obj", {{{2, 1.05, 1e-4, 1e-6}, kGoal, {2, 1.05, 1e-4, 1e-6}}}},
       {"ellipsetorus.obj", {{kGoal, kGoal, {4, 1.05, 1e-4, 1e-6}}}},
-      {"iron.obj", {{{2, 1.05, 1e-4, 180}, {2, 1.05, 1e-4, 180}, {4, 1.05, 1e-4, 180}}}},
-      {"bathtub.obj", {{kGoal, kGoal, {18, 1.05, 1e-4, 1e-6}}}},
+      {"iron.obj", {{{2, 1.05, 1e-4, 180}, {2, 1.05, 1e-4, 180}, {2, 1.05, 1e-4, 180}}}},
+      {"bathtub.obj", {{kGoal, kGoal, {1, 1.05, 1e-4, 1e-6}}}},
   };
 
   int files = 0;

@@ -34,8 +34,7 @@ constexpr double kCuspAngle = 1e-3;     // radians
 // Intervals of the transversal-curvature samples along a segment.
 constexpr int kCurvatureIntervals = 16;
 // Directions (angles from the curve tangent) in which G¹ patches are measured
-// for master–slave and averaging, and in which a blended tensor is sampled
-// for the direct method; ω0 = 0 carries the constraint.
+// for master–slave and averaging; ω0 = 0 carries the constraint.
 constexpr std::array<double, 5> kMeasureAngles = {std::numbers::pi / 6, std::numbers::pi / 3, std::numbers::pi / 2,
                                                   2 * std::numbers::pi / 3, 5 * std::numbers::pi / 6};
 
@@ -334,16 +333,17 @@ std::shared_ptr<const TransversalCurvature> buildEdgeCurvature(const Impl &impl,
                          : options.edgeCurvature == EdgeCurvature::MasterSlave ? 0
                                                                                : -1;
   const bool direct = !namedMaster && options.edgeCurvature == EdgeCurvature::Direct;
-  // Direct: vertex tensors in the fence frame (t, N × t) at both ends, blended
-  // in arc length. The arc lengths to the samples are summed interval by
-  // interval (each quadrature short, none repeated).
-  std::array<WeingartenForm, 2> endForms;
+  // Direct: the vertex tensors' normal curvatures across the edge (in the
+  // fence direction N × t) at both ends, blended in arc length. The arc
+  // lengths to the samples are summed interval by interval (each quadrature
+  // short, none repeated).
+  std::array<double, 2> endTransversal{};
   std::array<double, kCurvatureIntervals + 1> arc{};
   if (direct) {
     for (int end = 0; end < 2; ++end) {
       const VertexCurvature &vc = impl.curvatures[end == 0 ? seg.start : seg.end];
       const Vec3 t = normalized(seg.curve.derivatives(end)[1]), b = cross(fence.normal(end), t);
-      endForms[end] = {dot(vc.shape(t), t), dot(vc.shape(b), b), dot(vc.shape(t), b)};
+      endTransversal[end] = dot(vc.shape(b), b);
     }
     for (int j = 1; j <= kCurvatureIntervals; ++j)
       arc[j] = arc[j - 1] + seg.curve.arcLength(double(j - 1) / kCurvatureIntervals, double(j) / kCurvatureIntervals);
@@ -356,7 +356,6 @@ std::shared_ptr<const TransversalCurvature> buildEdgeCurvature(const Impl &impl,
     Vec3 n, dn;
     fence.normalAndDerivative(u, c, n, dn);
     const Vec3 t = normalized(c[1]), d = cross(n, t);
-    const double k0 = dot(c[2], n) / dot(c[1], c[1]);
     double kappa = 0;
     if (masterSurface) {
       // The master's second fundamental form in the fence direction, at
@@ -370,13 +369,16 @@ std::shared_ptr<const TransversalCurvature> buildEdgeCurvature(const Impl &impl,
     } else if (j == 0 || j == kCurvatureIntervals) {
       kappa = impl.curvatures[j == 0 ? seg.start : seg.end].normalCurvature(d);
     } else if (direct) {
+      // The blended tensor's own normal curvature across the edge. Fitting
+      // it with the constraint κ(0) = k0 instead (as the measured sources
+      // do) moves κ_D by a third of the curve's disagreement k0 − w1 with
+      // the blend, the other way; where a curve's curvature has a spike
+      // near a node (a sketch stroke's fit, or the vertex repair's tweak
+      // of its first span) that turned a few units of disagreement into
+      // transversal curvatures 10–15 times the ends' (bathtub's rim: −13.6
+      // between ends of 0.85 and −1.49), and the ribbons folded their faces.
       const double x = arc[j] / length;
-      const WeingartenForm w{(1 - x) * endForms[0].w1 + x * endForms[1].w1,
-                             (1 - x) * endForms[0].w2 + x * endForms[1].w2,
-                             (1 - x) * endForms[0].w12 + x * endForms[1].w12};
-      std::array<double, 5> measured;
-      for (size_t k = 0; k < kMeasureAngles.size(); ++k) measured[k] = w.normalCurvature(kMeasureAngles[k]);
-      kappa = constrainedTransversal(measured, k0);
+      kappa = (1 - x) * endTransversal[0] + x * endTransversal[1];
     } else {
       CURVENET_CHECK(g1 != nullptr, "segment " + std::to_string(e) + " needs the G¹ surface");
       std::array<double, 5> measured{};
