@@ -117,6 +117,25 @@ bool patchFolds(const Patch &patch) {
   return false;
 }
 
+/// True when the patch's normal du × dv points along each side's fence
+/// normal at eight points just inside the side (what a patch meeting its
+/// fences with the loop's orientation does, folded inside or not). A patch
+/// turned over as a whole, or along a side, does not.
+bool facesItsFences(const Patch &patch) {
+  const RegularDomain &domain = patch.domain();
+  const double inset = 1.0 - 0.02 / kFoldRows;
+  for (int i = 0; i < domain.sides(); ++i)
+    for (int j = 0; j < 8; ++j) {
+      const double s = (j + 0.5) / 8;
+      const Vec2 uv = domain.pointOnSide(i, s) * inset;
+      const DualVec3 r = patch.evaluate(uv.x, uv.y);
+      const LinearRibbon &ribbon = patch.ribbon(i);
+      const Vec3 fenceNormal = cross(ribbon.curve().derivatives(s)[1], ribbon.fenceDirection(s));
+      if (!(dot(cross(r.du, r.dv), fenceNormal) > 0)) return false;
+    }
+  return true;
+}
+
 // Surface::Impl: patches/surface_impl.hpp.
 
 const bezier::BezierSurfaceData *SurfaceAccess::bezierData(const Surface &surface) {
@@ -480,38 +499,63 @@ FaceBuild buildFace(const Impl &impl, int f) {
                             g2 ? LinearRibbon::ScalarBlend::Quintic : LinearRibbon::ScalarBlend::Linear);
     startTargets.push_back(startTarget), endTargets.push_back(endTarget);
   }
-  std::vector<ParabolicRibbon> parabolic;
   auto parabolicOf = [&](const LinearRibbon &ribbon) {
     std::vector<const TransversalCurvature *> curvatures;
     for (const LinearRibbon::Piece &piece : ribbon.pieces())
       curvatures.push_back(impl.edgeCurvatures[piece.segment].get());
     return ParabolicRibbon(ribbon, std::move(curvatures));
   };
+  // gregory-g2's patch for given corner blend shares: parabolic ribbons
+  // whose corner terms match (matchCornerTerms). A side whose corners both
+  // take the two-ribbon blend alone meets no correction patch, which the
+  // quintic blend of α, β (and the corner-term matching) is for: there it
+  // takes the linear blend of the unit frame, as the G¹ ribbons do, whose
+  // |T| stays within its end values.
+  auto g2Patch = [&](std::vector<LinearRibbon> sideRibbons, std::vector<double> shares) {
+    std::vector<ParabolicRibbon> parabolic = matchCornerTerms(sideRibbons, parabolicOf);
+    for (int i = 0; i < n; ++i)
+      if (shares[i] == 1 && shares[(i + 1) % n] == 1) {
+        sideRibbons[i].setEndConditions(startTargets[i], endTargets[i], LinearRibbon::ScalarBlend::Linear);
+        parabolic[i] = parabolicOf(sideRibbons[i]);
+      }
+    return std::make_shared<const Patch>(std::move(sideRibbons), impl.options, std::move(parabolic), std::move(shares));
+  };
+  auto folds = [&](const Patch &patch) {
+    try {
+      return patchFolds(patch);
+    } catch (const NonFinitePatch &) {
+      // Degenerate input (e.g. coincident corners after the tolerance, a
+      // collapsed side) that the topology checks let through: refuse it here
+      // rather than hand out NaN points.
+      throw InputError("", "face " + std::to_string(f),
+                       "the patch cannot be evaluated (non-finite points inside the face): the loop is degenerate");
+    }
+  };
   std::vector<double> blendShares;
   if (g2) {
+    std::vector<ParabolicRibbon> parabolic;
     for (const LinearRibbon &ribbon : ribbons) parabolic.push_back(parabolicOf(ribbon));
     blendShares = cornerBlendShares(ribbons, parabolic);
-    parabolic = matchCornerTerms(ribbons, parabolicOf);
-    // A side whose corners both take the two-ribbon blend alone meets no
-    // correction patch, which the quintic blend of α, β (and the corner-term
-    // matching) is for: there it takes the linear blend of the unit frame,
-    // as the G¹ ribbons do, whose |T| stays within its end values.
-    for (int i = 0; i < n; ++i)
-      if (blendShares[i] == 1 && blendShares[(i + 1) % n] == 1) {
-        ribbons[i].setEndConditions(startTargets[i], endTargets[i], LinearRibbon::ScalarBlend::Linear);
-        parabolic[i] = parabolicOf(ribbons[i]);
+    result.patch = g2Patch(ribbons, blendShares);
+  } else {
+    result.patch = std::make_shared<const Patch>(std::move(ribbons), impl.options);
+  }
+  result.folded = folds(*result.patch);
+  // The shares say where the correction patch would carry the ribbons'
+  // disagreement too far, not whether the face folds: a gregory-g2 face
+  // that folds with them is rebuilt with eq. 17 at every corner, then with
+  // the two-ribbon blend at every corner, and the first of these that does
+  // not fold is kept (docs/surfaces.md, Folds). Both are G² across the sides.
+  if (g2 && result.folded)
+    for (double uniform : {0.0, 1.0}) {
+      if (std::all_of(blendShares.begin(), blendShares.end(), [&](double mu) { return mu == uniform; })) continue;
+      std::shared_ptr<const Patch> candidate = g2Patch(ribbons, std::vector<double>(n, uniform));
+      if (!folds(*candidate) && facesItsFences(*candidate)) {
+        result.patch = std::move(candidate);
+        result.folded = false;
+        break;
       }
-  }
-  result.patch = std::make_shared<const Patch>(std::move(ribbons), impl.options, std::move(parabolic), std::move(blendShares));
-  try {
-    result.folded = patchFolds(*result.patch);
-  } catch (const NonFinitePatch &) {
-    // Degenerate input (e.g. coincident corners after the tolerance, a
-    // collapsed side) that the topology checks let through: refuse it here
-    // rather than hand out NaN points.
-    throw InputError("", "face " + std::to_string(f),
-                     "the patch cannot be evaluated (non-finite points inside the face): the loop is degenerate");
-  }
+    }
   return result;
 }
 
