@@ -232,11 +232,12 @@ std::vector<Case> corpus() {
       {"tangents-3deg", tangents(3.0), kGoal, kGoal, kGoal},
       {"warp-1pct", warped(0.01), kGoal, kGoal, kGoal},
       {"warp-5pct", warped(0.05), kGoal, kGoal, kGoal},
-      // saddle-nodes' G² quads fold (face 4 unskewed, where the ribbons of
-      // its short sides have rulings that cross a third of the way in);
-      // skewed, one or two of them.
-      {"x-skew-1deg", skewed(1.0), kGoal, kGoal, {1, 1.05, 1e-4, 1e-6}},
-      {"x-skew-5deg", skewed(5.0), kGoal, kGoal, {2, 1.05, 1e-4, 1e-6}},
+      // saddle-nodes' G² quad 4, where the ribbons of its short sides have
+      // rulings that cross a third of the way in, folds with its blend
+      // shares but not with eq. 17 at every corner (the fallback of
+      // buildFace); skewed by 5°, one quad still folds whatever the shares.
+      {"x-skew-1deg", skewed(1.0), kGoal, kGoal, kGoal},
+      {"x-skew-5deg", skewed(5.0), kGoal, kGoal, {1, 1.05, 1e-4, 1e-6}},
   };
 }
 
@@ -331,26 +332,31 @@ TEST(RobustnessCorpus, SharedSketches) {
   if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << dir << " is absent: no sketches to run";
   // Columns as in corpus(): gregory-g1, composite-ribbon, gregory-g2.
   // Measured: gregory-g1 and composite-ribbon fold a few faces whose
-  // parametrization folds whatever the corners (not at creases: iron's two
-  // hexagons, which meet at 180° along their shared curve, a pleat; under gregory-g1 one of them, the faces that fold under eq. 17's
-  // corners taking the two-ribbon blend or shorter cross-derivatives, and
-  // sewing_machine's L-shaped strips being split at a quarter point;
-  // doghead's gregory-g2 face 1 measures its connection curve on such a
-  // blended G¹ patch and folds since); gregory-g2
-  // folds some faces of each sketch with creases (none of spherecylinder's),
-  // its vertex curvatures being fitted to curves that share no tangent plane
-  // there. Normal angles of 6.5–7.7° are at G¹ segments ending at a
-  // crease, whose two corner planes are up to 18° apart and meet halfway;
-  // iron's 180° is the edge between its two folded faces.
+  // parametrization folds whatever the corners (not at creases): iron's two
+  // hexagons meet at 180° along their shared curve, a pleat, and one of them
+  // folds under gregory-g1 (faces that fold under eq. 17's corners take the
+  // two-ribbon blend or shorter cross-derivatives, sewing_machine's L-shaped
+  // strips are split at a quarter point). gregory-g2 folds a few faces
+  // (49 before the direct transversal curvature stopped taking up curvature
+  // spikes of the curves and folded faces were rebuilt with uniform blend
+  // shares, see docs/surfaces.md, Folds): 10 faces, iron's are faces
+  // composite-ribbon folds too, dress's the 2-sided halves; bathtub's
+  // and ellipsetorus's are thin quads whose short sides' ribbons carry a
+  // fence twist several times the end vertices' (the tangent planes at the
+  // two ends of a short, strongly bent side differ by more than the tensors
+  // there account for). Normal angles of 6.5–7.7° are at G¹ segments ending
+  // at a crease, whose two corner planes are up to 18° apart and meet
+  // halfway; iron's 180° is the edge between its two folded faces, doghead's
+  // the edge between a folded 2-sided face and its neighbour.
   const std::map<std::string, std::array<Expectation, 3>> rows = {
-      {"doghead.obj", {{{0, 1.05, 1e-4, 8}, {2, 1.05, 1e-4, 7}, {13, 1.05, 1e-4, 7}}}},
+      {"doghead.obj", {{{0, 1.05, 1e-4, 8}, {2, 1.05, 1e-4, 7}, {3, 1.05, 1e-4, 180}}}},
       {"spherecylinder.obj", {{kGoal, kGoal, kGoal}}},
-      {"sewing_machine.obj", {{kGoal, kGoal, {2, 1.05, 1e-4, 1e-6}}}},
-      {"box.obj", {{{0, 1.05, 1e-4, 7}, {0, 1.05, 1e-4, 7}, {3, 1.05, 1e-4, 7}}}},
-      {"dress.obj", {{kGoal, kGoal, {3, 1.05, 1e-4, 1e-6}}}},
-      {"ellipsetorus.obj", {{kGoal, kGoal, {4, 1.05, 1e-4, 1e-6}}}},
-      {"iron.obj", {{{1, 1.05, 1e-4, 180}, {2, 1.05, 1e-4, 180}, {4, 1.05, 1e-4, 180}}}},
-      {"bathtub.obj", {{kGoal, kGoal, {18, 1.05, 1e-4, 1e-6}}}},
+      {"sewing_machine.obj", {{kGoal, kGoal, kGoal}}},
+      {"box.obj", {{{0, 1.05, 1e-4, 7}, {0, 1.05, 1e-4, 7}, {0, 1.05, 1e-4, 7}}}},
+      {"dress.obj", {{kGoal, kGoal, {2, 1.05, 1e-4, 1e-6}}}},
+      {"ellipsetorus.obj", {{kGoal, kGoal, {1, 1.05, 1e-4, 1e-6}}}},
+      {"iron.obj", {{{1, 1.05, 1e-4, 180}, {2, 1.05, 1e-4, 180}, {2, 1.05, 1e-4, 180}}}},
+      {"bathtub.obj", {{kGoal, kGoal, {2, 1.05, 1e-4, 1e-6}}}},
   };
 
   int files = 0;

@@ -107,9 +107,9 @@ enum class FenceNormals {
 
 /// How gregory-g2 chooses the transversal curvature κ_D(s) of each edge (the
 /// normal curvature in the common direction N × P', [SV14] Sec. 3.3).
-/// Every source keeps κ in the curve's own direction equal to the curve's
-/// normal curvature (constraint κ(ω0) = k0) and uses the vertex tensors at the
-/// segment ends. A segment whose curve names a master face
+/// Every source uses the vertex tensors at the segment ends and keeps κ in
+/// the curve's own direction equal to the curve's normal curvature
+/// (constraint κ(ω0) = k0) when it fits (Direct: within a bound, below). A segment whose curve names a master face
 /// (EdgeDescription::masterFace, [SV14] Sec. 5.1) always takes the master's
 /// G¹ patch curvature as MasterSlave does, whichever source is chosen here;
 /// a connection curve (Segment::connection, [SV14] Sec. 5.2) always
@@ -123,8 +123,12 @@ enum class EdgeCurvature {
   /// the measurements averaged and fitted with the constraint.
   Averaging,
   /// The two end-vertex tensors, expressed in the fence frame (t, N × t) at
-  /// each end, blended linearly in arc length and fitted with the
-  /// constraint. Needs no G¹ patches: the cheapest, and the default.
+  /// each end and blended linearly in arc length; κ_D moves with the
+  /// curve's own curvature as the constrained fit moves it (a third of the
+  /// curve's disagreement with the blend) while that disagreement is of the
+  /// size of the ends' κ_D, and not where it is a spike of the curve
+  /// (docs/surfaces.md, Folds). Needs no G¹ patches: the cheapest, and the
+  /// default.
   Direct,
   /// The reference surface's normal curvature (built-ins: analytic); vertex
   /// tensors from it too. InputError when the network has no reference.

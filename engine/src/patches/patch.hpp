@@ -86,6 +86,10 @@ public:
   /// Gregory schemes: corner i's share of the two-ribbon blend
   /// (cornerBlendShares); empty for the other schemes.
   const std::vector<double> &blendShares() const { return blendShare_; }
+  /// gregory-g2: side i's parabolic ribbon (empty for the other schemes).
+  const std::vector<ParabolicRibbon> &parabolicRibbons() const { return parabolic_; }
+  /// gregory-g2: where each ribbon's cross parameter saturates (1: not at all).
+  const std::vector<double> &crossReach() const { return crossReach_; }
 
   /// Surface point with exact ∂/∂u, ∂/∂v at domain point (u, v).
   DualVec3 evaluate(double u, double v) const;

@@ -33,9 +33,12 @@ constexpr double kStraightAngle = 1e-2; // radians
 constexpr double kCuspAngle = 1e-3;     // radians
 // Intervals of the transversal-curvature samples along a segment.
 constexpr int kCurvatureIntervals = 16;
+// Direct edge curvature: a curve's disagreement with the blended end tensors
+// up to this many times the ends' transversal curvature moves κ_D as the
+// constrained refit does; from 3 times that, not at all (buildEdgeCurvature).
+constexpr double kSpikeFrom = 1.0;
 // Directions (angles from the curve tangent) in which G¹ patches are measured
-// for master–slave and averaging, and in which a blended tensor is sampled
-// for the direct method; ω0 = 0 carries the constraint.
+// for master–slave and averaging; ω0 = 0 carries the constraint.
 constexpr std::array<double, 5> kMeasureAngles = {std::numbers::pi / 6, std::numbers::pi / 3, std::numbers::pi / 2,
                                                   2 * std::numbers::pi / 3, 5 * std::numbers::pi / 6};
 
@@ -115,6 +118,25 @@ bool patchFolds(const Patch &patch, int rows = kFoldRows) {
       }
   }
   return false;
+}
+
+/// True when the patch's normal du × dv points along each side's fence
+/// normal at eight points just inside the side (what a patch meeting its
+/// fences with the loop's orientation does, folded inside or not). A patch
+/// turned over as a whole, or along a side, does not.
+bool facesItsFences(const Patch &patch) {
+  const RegularDomain &domain = patch.domain();
+  const double inset = 1.0 - 0.02 / kFoldRows;
+  for (int i = 0; i < domain.sides(); ++i)
+    for (int j = 0; j < 8; ++j) {
+      const double s = (j + 0.5) / 8;
+      const Vec2 uv = domain.pointOnSide(i, s) * inset;
+      const DualVec3 r = patch.evaluate(uv.x, uv.y);
+      const LinearRibbon &ribbon = patch.ribbon(i);
+      const Vec3 fenceNormal = cross(ribbon.curve().derivatives(s)[1], ribbon.fenceDirection(s));
+      if (!(dot(cross(r.du, r.dv), fenceNormal) > 0)) return false;
+    }
+  return true;
 }
 
 // Surface::Impl: patches/surface_impl.hpp.
@@ -333,16 +355,18 @@ std::shared_ptr<const TransversalCurvature> buildEdgeCurvature(const Impl &impl,
                          : options.edgeCurvature == EdgeCurvature::MasterSlave ? 0
                                                                                : -1;
   const bool direct = !namedMaster && options.edgeCurvature == EdgeCurvature::Direct;
-  // Direct: vertex tensors in the fence frame (t, N × t) at both ends, blended
-  // in arc length. The arc lengths to the samples are summed interval by
-  // interval (each quadrature short, none repeated).
-  std::array<WeingartenForm, 2> endForms;
+  // Direct: the vertex tensors' normal curvatures across the edge (in the
+  // fence direction N × t) and along it at both ends, blended in arc
+  // length. The arc lengths to the samples are summed interval by interval
+  // (each quadrature short, none repeated).
+  std::array<double, 2> endTransversal{}, endAlong{};
   std::array<double, kCurvatureIntervals + 1> arc{};
   if (direct) {
     for (int end = 0; end < 2; ++end) {
       const VertexCurvature &vc = impl.curvatures[end == 0 ? seg.start : seg.end];
       const Vec3 t = normalized(seg.curve.derivatives(end)[1]), b = cross(fence.normal(end), t);
-      endForms[end] = {dot(vc.shape(t), t), dot(vc.shape(b), b), dot(vc.shape(t), b)};
+      endTransversal[end] = dot(vc.shape(b), b);
+      endAlong[end] = dot(vc.shape(t), t);
     }
     for (int j = 1; j <= kCurvatureIntervals; ++j)
       arc[j] = arc[j - 1] + seg.curve.arcLength(double(j - 1) / kCurvatureIntervals, double(j) / kCurvatureIntervals);
@@ -355,7 +379,6 @@ std::shared_ptr<const TransversalCurvature> buildEdgeCurvature(const Impl &impl,
     Vec3 n, dn;
     fence.normalAndDerivative(u, c, n, dn);
     const Vec3 t = normalized(c[1]), d = cross(n, t);
-    const double k0 = dot(c[2], n) / dot(c[1], c[1]);
     double kappa = 0;
     if (masterSurface) {
       // The master's second fundamental form in the fence direction, at
@@ -369,13 +392,24 @@ std::shared_ptr<const TransversalCurvature> buildEdgeCurvature(const Impl &impl,
     } else if (j == 0 || j == kCurvatureIntervals) {
       kappa = impl.curvatures[j == 0 ? seg.start : seg.end].normalCurvature(d);
     } else if (direct) {
+      // The blend of the end tensors across the edge, w2, and along it, w1.
+      // Refitting the blended tensor with the constraint κ(0) = k0 (as the
+      // measured sources do, over their five directions) moves κ_D by
+      // −(k0 − w1)/3: a third of the curve's disagreement with the blend,
+      // turned across the edge. Where that disagreement is of the size of
+      // the transversal curvatures themselves it is the surface's own
+      // variation, and the shift is kept (saddle-nodes: up to 0.6 of the
+      // ends' |κ_D|; without it 1.64 % instead of 1.44 %). Where it is many
+      // times larger it is a spike of the curve's own curvature near a node
+      // (a sketch stroke's fit; bathtub's rim: 28×), which the shift turned
+      // into transversal curvatures 10–15 times the ends' and folded 18
+      // faces: from 1× to 3× of the ends' max |κ_D| it is faded out.
       const double x = arc[j] / length;
-      const WeingartenForm w{(1 - x) * endForms[0].w1 + x * endForms[1].w1,
-                             (1 - x) * endForms[0].w2 + x * endForms[1].w2,
-                             (1 - x) * endForms[0].w12 + x * endForms[1].w12};
-      std::array<double, 5> measured;
-      for (size_t k = 0; k < kMeasureAngles.size(); ++k) measured[k] = w.normalCurvature(kMeasureAngles[k]);
-      kappa = constrainedTransversal(measured, k0);
+      const double across = (1 - x) * endTransversal[0] + x * endTransversal[1];
+      const double disagreement = dot(c[2], n) / dot(c[1], c[1]) - ((1 - x) * endAlong[0] + x * endAlong[1]);
+      const double scale = std::max({std::abs(endTransversal[0]), std::abs(endTransversal[1]), 1 / network.diagonal()});
+      const double fade = std::clamp((std::abs(disagreement) / scale - kSpikeFrom) / (2 * kSpikeFrom), 0.0, 1.0);
+      kappa = across - disagreement / 3 * (1 - fade * fade * (3 - 2 * fade));
     } else {
       CURVENET_CHECK(g1 != nullptr, "segment " + std::to_string(e) + " needs the G¹ surface");
       std::array<double, 5> measured{};
@@ -525,28 +559,27 @@ FaceBuild buildFace(const Impl &impl, int f) {
                             g2 ? LinearRibbon::ScalarBlend::Quintic : LinearRibbon::ScalarBlend::Linear);
     startTargets.push_back(startTarget), endTargets.push_back(endTarget);
   }
-  std::vector<ParabolicRibbon> parabolic;
   auto parabolicOf = [&](const LinearRibbon &ribbon) {
     std::vector<const TransversalCurvature *> curvatures;
     for (const LinearRibbon::Piece &piece : ribbon.pieces())
       curvatures.push_back(impl.edgeCurvatures[piece.segment].get());
     return ParabolicRibbon(ribbon, std::move(curvatures));
   };
-  std::vector<double> blendShares;
-  if (g2) {
-    for (const LinearRibbon &ribbon : ribbons) parabolic.push_back(parabolicOf(ribbon));
-    blendShares = cornerBlendShares(ribbons, parabolic);
-    parabolic = matchCornerTerms(ribbons, parabolicOf);
-    // A side whose corners both take the two-ribbon blend alone meets no
-    // correction patch, which the quintic blend of α, β (and the corner-term
-    // matching) is for: there it takes the linear blend of the unit frame,
-    // as the G¹ ribbons do, whose |T| stays within its end values.
+  // gregory-g2's patch for given corner blend shares: parabolic ribbons
+  // whose corner terms match (matchCornerTerms). A side whose corners both
+  // take the two-ribbon blend alone meets no correction patch, which the
+  // quintic blend of α, β (and the corner-term matching) is for: there it
+  // takes the linear blend of the unit frame, as the G¹ ribbons do, whose
+  // |T| stays within its end values.
+  auto g2Patch = [&](std::vector<LinearRibbon> sideRibbons, std::vector<double> shares) {
+    std::vector<ParabolicRibbon> parabolic = matchCornerTerms(sideRibbons, parabolicOf);
     for (int i = 0; i < n; ++i)
-      if (blendShares[i] == 1 && blendShares[(i + 1) % n] == 1) {
-        ribbons[i].setEndConditions(startTargets[i], endTargets[i], LinearRibbon::ScalarBlend::Linear);
-        parabolic[i] = parabolicOf(ribbons[i]);
+      if (shares[i] == 1 && shares[(i + 1) % n] == 1) {
+        sideRibbons[i].setEndConditions(startTargets[i], endTargets[i], LinearRibbon::ScalarBlend::Linear);
+        parabolic[i] = parabolicOf(sideRibbons[i]);
       }
-  }
+    return std::make_shared<const Patch>(std::move(sideRibbons), impl.options, std::move(parabolic), std::move(shares));
+  };
   auto folds = [f](const Patch &patch, int rows = kFoldRows) {
     try {
       return patchFolds(patch, rows);
@@ -560,9 +593,32 @@ FaceBuild buildFace(const Impl &impl, int f) {
   };
   const bool g1 = impl.options.scheme == Scheme::GregoryG1;
   std::vector<LinearRibbon> linear;
-  if (g1) linear = ribbons;
-  result.patch = std::make_shared<const Patch>(std::move(ribbons), impl.options, std::move(parabolic), std::move(blendShares));
+  std::vector<double> blendShares;
+  if (g2) {
+    std::vector<ParabolicRibbon> parabolic;
+    for (const LinearRibbon &ribbon : ribbons) parabolic.push_back(parabolicOf(ribbon));
+    blendShares = cornerBlendShares(ribbons, parabolic);
+    result.patch = g2Patch(ribbons, blendShares);
+  } else {
+    if (g1) linear = ribbons;
+    result.patch = std::make_shared<const Patch>(std::move(ribbons), impl.options);
+  }
   result.folded = folds(*result.patch);
+  // The shares say where the correction patch would carry the ribbons'
+  // disagreement too far, not whether the face folds: a gregory-g2 face
+  // that folds with them is rebuilt with eq. 17 at every corner, then with
+  // the two-ribbon blend at every corner, and the first of these that does
+  // not fold is kept (docs/surfaces.md, Folds). Both are G² across the sides.
+  if (g2 && result.folded)
+    for (double uniform : {0.0, 1.0}) {
+      if (std::all_of(blendShares.begin(), blendShares.end(), [&](double mu) { return mu == uniform; })) continue;
+      std::shared_ptr<const Patch> candidate = g2Patch(ribbons, std::vector<double>(n, uniform));
+      if (!folds(*candidate) && facesItsFences(*candidate)) {
+        result.patch = std::move(candidate);
+        result.folded = false;
+        break;
+      }
+    }
   if (result.folded && g1) result = unfoldedG1(result, linear, startTargets, endTargets, impl.options, folds);
   return result;
 }
