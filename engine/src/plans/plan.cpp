@@ -41,6 +41,14 @@ EvaluationPlan::EvaluationPlan(const PlanKey &key) : key_(key) {
   const int n = key.sides, r = key.resolution;
   CURVENET_CHECK(n >= 3 && n <= 8 && r >= 1, "plan for n = " + std::to_string(n) + ", r = " + std::to_string(r));
   const RegularDomain domain(n);
+  placeSamples(domain);
+  sampleSidesAndBlends(domain);
+  if (key.scheme != Scheme::CompositeRibbon) splitValuesAndGradients();
+  if (key.scheme != Scheme::CompositeRibbon && !perSide_) sampleSideZeroBoundary(domain);
+}
+
+void EvaluationPlan::placeSamples(const RegularDomain &domain) {
+  const int n = key_.sides, r = key_.resolution;
   const std::size_t count = faceInteriorCount(n, r);
   samples_.resize(count);
   rotation_.resize(static_cast<std::size_t>(n) * count);
@@ -80,7 +88,12 @@ EvaluationPlan::EvaluationPlan(const PlanKey &key) : key_(key) {
     cos_.push_back(std::cos(angle));
     sin_.push_back(std::sin(angle));
   }
+}
 
+void EvaluationPlan::sampleSidesAndBlends(const RegularDomain &domain) {
+  const PlanKey &key = key_;
+  const int n = key.sides;
+  const std::size_t count = samples_.size();
   // On a triangle every side is computed at the sample itself, as
   // Surface::evaluate does: the quintic sweeplines cross near the opposite
   // corner, and on the bisector there the two roots tie (see Sweepline), so
@@ -150,43 +163,46 @@ EvaluationPlan::EvaluationPlan(const PlanKey &key) : key_(key) {
       b_[k] = first / total;
     }
   });
+}
+
+void EvaluationPlan::splitValuesAndGradients() {
   // Side 0's parameter values (every side's when perSide_) and corner 0's
   // blend values as plain arrays for the position-only path: side i's over
   // a rotation run are side 0's over the rotated run (sideValuesFrom).
   // The Gregory schemes then keep values and gradients as separate arrays
   // alone (the jet pass's sidesAndBlends reads them with vector loads).
-  if (!cr) {
-    const std::size_t stored = s_.size();
-    sideValues_.resize(stored), sideDu_.resize(stored), sideDv_.resize(stored);
-    blendValues_.resize(count), blendDu_.resize(count), blendDv_.resize(count);
-    for (std::size_t j = 0; j < stored; ++j) sideValues_[j] = s_[j].v, sideDu_[j] = s_[j].du, sideDv_[j] = s_[j].dv;
-    for (std::size_t k = 0; k < count; ++k) blendValues_[k] = b_[k].v, blendDu_[k] = b_[k].du, blendDv_[k] = b_[k].dv;
-    std::vector<Dual>().swap(s_), std::vector<Dual>().swap(b_);
-    soa_ = true;
-  }
+  const std::size_t stored = s_.size(), count = b_.size();
+  sideValues_.resize(stored), sideDu_.resize(stored), sideDv_.resize(stored);
+  blendValues_.resize(count), blendDu_.resize(count), blendDv_.resize(count);
+  for (std::size_t j = 0; j < stored; ++j) sideValues_[j] = s_[j].v, sideDu_[j] = s_[j].du, sideDv_[j] = s_[j].dv;
+  for (std::size_t k = 0; k < count; ++k) blendValues_[k] = b_[k].v, blendDu_[k] = b_[k].du, blendDv_[k] = b_[k].dv;
+  std::vector<Dual>().swap(s_), std::vector<Dual>().swap(b_);
+  soa_ = true;
+}
+
+void EvaluationPlan::sampleSideZeroBoundary(const RegularDomain &domain) {
   // Side 0's boundary samples, as Patch::evaluate computes them (sweeps by
   // hermiteSweepSides, blends in product form) at the tessellator's points.
-  if (!cr && !perSide_) {
-    boundary_.resize(static_cast<std::size_t>(r + 1) * n * 2);
-    const bool g2 = key.scheme == Scheme::GregoryG2;
-    const Vec2 p0 = domain.corner(0), p1 = domain.corner(1);
-    std::array<Dual, 8> side, power, product;
-    for (int j = 0; j <= r; ++j) {
-      const double t = double(j) / r; // boundaryRows' t on a one-segment side
-      const Vec2 uv = p0 + (p1 - p0) * t;
-      const Dual u = Dual::u(uv.x), v = Dual::vCoord(uv.y);
-      if (key.sweepline == Sweepline::Radial)
-        for (int k = 0; k < n; ++k) side[k] = domain.radialSideParameter(k, u, v);
-      else domain.hermiteSweepSides(u, v, key.sweepline == Sweepline::QuinticHermite, std::span<Dual>(side.data(), n));
-      for (int k = 0; k < n; ++k) {
-        const Dual distance = domain.perpendicularDistance(k, u, v);
-        power[k] = g2 ? distance * distance * distance : distance * distance;
-      }
-      const Dual total = domain.cornerProducts(power, product);
-      for (int k = 0; k < n; ++k) {
-        boundary_[2 * (static_cast<std::size_t>(j) * n + k)] = side[k];
-        boundary_[2 * (static_cast<std::size_t>(j) * n + k) + 1] = product[k] / total;
-      }
+  const int n = key_.sides, r = key_.resolution;
+  boundary_.resize(static_cast<std::size_t>(r + 1) * n * 2);
+  const bool g2 = key_.scheme == Scheme::GregoryG2;
+  const Vec2 p0 = domain.corner(0), p1 = domain.corner(1);
+  std::array<Dual, 8> side, power, product;
+  for (int j = 0; j <= r; ++j) {
+    const double t = double(j) / r; // boundaryRows' t on a one-segment side
+    const Vec2 uv = p0 + (p1 - p0) * t;
+    const Dual u = Dual::u(uv.x), v = Dual::vCoord(uv.y);
+    if (key_.sweepline == Sweepline::Radial)
+      for (int k = 0; k < n; ++k) side[k] = domain.radialSideParameter(k, u, v);
+    else domain.hermiteSweepSides(u, v, key_.sweepline == Sweepline::QuinticHermite, std::span<Dual>(side.data(), n));
+    for (int k = 0; k < n; ++k) {
+      const Dual distance = domain.perpendicularDistance(k, u, v);
+      power[k] = g2 ? distance * distance * distance : distance * distance;
+    }
+    const Dual total = domain.cornerProducts(power, product);
+    for (int k = 0; k < n; ++k) {
+      boundary_[2 * (static_cast<std::size_t>(j) * n + k)] = side[k];
+      boundary_[2 * (static_cast<std::size_t>(j) * n + k) + 1] = product[k] / total;
     }
   }
 }

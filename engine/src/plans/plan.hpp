@@ -20,6 +20,8 @@
 namespace curvenet {
 inline namespace v1 {
 
+class RegularDomain;
+
 struct PlanKey {
   Scheme scheme;        ///< gregory-g1, gregory-g2 or composite-ribbon
   Sweepline sweepline;  ///< resolved (never Auto); ignored by composite-ribbon
@@ -111,6 +113,15 @@ public:
   std::size_t memory() const;
 
 private:
+  /// The constructor's steps: the tessellator's sample pattern and its
+  /// rotations; side 0's parameter (every side's on a triangle), distance
+  /// and corner-0 blend at each sample; the Gregory schemes' values and
+  /// gradients as separate arrays; side 0's boundary samples.
+  void placeSamples(const RegularDomain &domain);
+  void sampleSidesAndBlends(const RegularDomain &domain);
+  void splitValuesAndGradients();
+  void sampleSideZeroBoundary(const RegularDomain &domain);
+
   /// Stored side parameter j (side-major when perSide_) and corner-0 blend j.
   Dual storedSide(std::size_t j) const { return soa_ ? Dual{sideValues_[j], sideDu_[j], sideDv_[j]} : s_[j]; }
   Dual storedBlend(std::size_t j) const { return soa_ ? Dual{blendValues_[j], blendDu_[j], blendDv_[j]} : b_[j]; }
