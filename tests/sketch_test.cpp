@@ -491,8 +491,15 @@ TEST(Sketch, PublicSketchesCloseIntoWatertightNetworks) {
     const Surface surface = Surface::build(network, {Scheme::GregoryG1});
     const int folded = static_cast<int>(surface.foldedFaces().size());
     EXPECT_LE(folded, e.folds);
-    // Vertex repair turns only near-coplanar tangents: nothing at a crease.
-    for (const RepairMove &m : surface.repairMoves()) EXPECT_FALSE(surface.isCreaseVertex(m.vertex)) << m.vertex;
+    // Vertex repair turns only near-coplanar tangents: at a crease only the
+    // G¹ curves of a fan, never a crease curve, and by at most 16°.
+    for (const RepairMove &m : surface.repairMoves()) {
+      if (!surface.isCreaseVertex(m.vertex)) continue;
+      EXPECT_EQ(m.kind, RepairKind::TangentPlane) << m.vertex;
+      EXPECT_LE(m.angle, 16 * std::numbers::pi / 180) << m.vertex;
+      for (int s : surface.network().vertices()[m.vertex].segments)
+        if (surface.network().segments()[s].sourceCurve == m.curve) EXPECT_FALSE(surface.isCreaseSegment(s)) << m.vertex;
+    }
     int creaseNodes = 0;
     for (const SketchNode &n : r.nodes) creaseNodes += n.crease ? 1 : 0;
     std::printf("%s: %zu nodes (%d creases), %zu curves, %zu faces, Euler %d, edges %d G1 / %zu crease, "

@@ -264,6 +264,16 @@ TweakResult tweakNetwork(const Network &network, const TweakOptions &options = {
 //     insertion to multiplicity p), so it stays C¹ there. A Bézier curve is
 //     raised to degree 4 first, where the turned point leaves the other end
 //     alone without a knot inside the span (the tweak raises it to 5).
+//     At a crease vertex (Surface::isCreaseVertex) the faces fall into fans,
+//     maximal runs of faces joined by G¹ segments between two crease
+//     segments; a crease curve lies on both sheets it separates, so a fan's
+//     tangent plane is the plane of its two crease curves, and the fan's G¹
+//     curves are turned into it (the crease curves stay): the G¹ segments
+//     there become exactly G¹. A crease vertex without crease segments is
+//     repaired as any vertex. A fan (or vertex) needing a turn above 16°,
+//     bounded other than by two crease or boundary curves, or crossed by a
+//     G¹ curve passing through the vertex is left alone and named in
+//     RepairResult::skipped.
 //  2. Curvature (G²): tweakNetwork on the result, at the vertices that fail
 //     the Euler constraint (degree-1 curves are skipped, not refused).
 // The moves are reported one per moved control point, with the length of
@@ -299,6 +309,8 @@ struct RepairResult {
   NetworkDescription network; ///< the repaired description (the input's when nothing moved)
   std::vector<RepairMove> moves;
   double maxMoveRelative = 0;
+  /// Crease fans step 1 left alone, each "vertex V: …" with the reason.
+  std::vector<std::string> skipped;
   bool changed() const { return !moves.empty(); }
 };
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <optional>
 
 #include "analysis/editable_curve.hpp"
@@ -104,27 +105,166 @@ BSplineCurve turnCurve(const Network &network, int curveIndex, std::vector<EndTu
   return edit.curve();
 }
 
-/// A vertex whose tangents leave their plane too far for a turn to be a
-/// repair (kCreaseResidual): a crease, where each face corner keeps its own
-/// plane.
+/// A vertex whose tangents leave their plane by more than kCreaseResidual.
 bool isCrease(const VertexAnalysis &va) { return va.valence >= 3 && va.tangentResidual > kCreaseResidual; }
 
-/// Step 1 on every vertex without a tangent plane that is no crease.
+/// The largest turn (radians) the repair makes at a crease vertex (the
+/// public sketches need up to 15.5°, at doghead's vertex 0): a fan
+/// whose G¹ curves leave the plane of its crease curves by more, or a crease
+/// vertex without crease segments whose tangents leave their plane by more,
+/// was drawn that way on purpose and is left alone (RepairResult::skipped).
+constexpr double kMaxCreaseTurn = 16 * std::numbers::pi / 180;
+
+/// The turn of `end` into the plane of unit normal n.
+EndTurn turnInto(const VertexAnalysis &va, const CurveEnd &end, const Vec3 &n) {
+  const Vec3 inPlane = end.tangent - n * dot(end.tangent, n);
+  if (squaredNorm(inPlane) == 0)
+    throw InputError("", "vertex " + std::to_string(va.vertex),
+                     "curve " + std::to_string(end.sourceCurve) +
+                         " leaves along the fitted normal; its tangent has no direction in the tangent plane");
+  return {va.vertex, end.sourceParameter, end.towardsLargerParameter, end.tangent, normalized(inPlane)};
+}
+
+/// The face corners at vertex v, as the two segments each joins there.
+std::vector<std::array<int, 2>> cornersAt(const Network &network, int v) {
+  std::vector<std::array<int, 2>> corners;
+  const auto &segments = network.segments();
+  for (const Face &face : network.faces()) {
+    std::vector<std::pair<int, bool>> loop;
+    for (const FaceSide &side : face.sides)
+      for (std::size_t j = 0; j < side.segments.size(); ++j) loop.emplace_back(side.segments[j], side.segmentReversed[j]);
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const auto [s, reversed] = loop[i];
+      if ((reversed ? segments[s].start : segments[s].end) == v) corners.push_back({s, loop[(i + 1) % loop.size()].first});
+    }
+  }
+  return corners;
+}
+
+/// Step 1 at a crease vertex. The faces around it fall into fans: maximal
+/// runs of corners joined by G¹ segments, each bounded by two crease (or
+/// boundary) segments. A crease curve lies on both sheets it separates, so
+/// a fan's one tangent plane is that of its two bounding curves, and the
+/// fan's G¹ curves are turned into it: every corner of the fan then has that
+/// plane, and the fences of its G¹ segments (the mean of the two corner
+/// planes, fenceEndNormal) agree with both patches. A crease vertex with no
+/// crease segment is a smooth vertex drawn badly: its tangents are turned
+/// into their fitted plane as at any vertex. Turns above kMaxCreaseTurn, a
+/// fan with other than two bounds, bounds nearly collinear, or a G¹ curve
+/// passing through the vertex leave the fan alone, named in `skipped`.
+void turnCreaseFans(const Network &network, const std::vector<VertexFrame> &frames, const VertexAnalysis &va,
+                    double tolerance, std::map<int, std::vector<EndTurn>> &byCurve, std::vector<std::string> &skipped) {
+  const int v = va.vertex;
+  const std::string where = "vertex " + std::to_string(v) + ": ";
+  std::map<int, const CurveEnd *> endOf;
+  for (const CurveEnd &end : va.ends) {
+    if (endOf.count(end.segment)) return skipped.push_back(where + "a segment with both ends here"), void();
+    endOf[end.segment] = &end;
+  }
+  auto smooth = [&](int s) { return !network.segments()[s].isBoundary() && !isCreaseSegment(network, frames, s); };
+  bool anyCrease = false;
+  for (const auto &[s, end] : endOf) anyCrease |= !smooth(s);
+  if (!anyCrease) {
+    // No crease segment: one tangent plane is meant, the fitted one.
+    std::vector<std::pair<int, EndTurn>> turns;
+    for (const CurveEnd &end : va.ends) {
+      if (std::abs(dot(end.tangent, va.normal)) <= std::sin(tolerance)) continue;
+      turns.emplace_back(end.sourceCurve, turnInto(va, end, va.normal));
+      if (angleBetween(end.tangent, turns.back().second.to) > kMaxCreaseTurn)
+        return skipped.push_back(where + "no crease segment, but a tangent leaves the plane by more than 16°"), void();
+    }
+    for (const auto &[curve, turn] : turns) byCurve[curve].push_back(turn);
+    return;
+  }
+  // Fans: corners joined across their G¹ segments (union-find over corners).
+  const std::vector<std::array<int, 2>> corners = cornersAt(network, v);
+  std::vector<int> parent(corners.size());
+  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = int(i);
+  auto root = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::map<int, int> firstCorner;
+  for (std::size_t i = 0; i < corners.size(); ++i)
+    for (int s : corners[i]) {
+      if (!smooth(s)) continue;
+      if (auto [it, fresh] = firstCorner.emplace(s, int(i)); !fresh) parent[root(int(i))] = root(it->second);
+    }
+  std::map<int, std::vector<int>> fans; // root → segments (bounds once, G¹ segments twice)
+  for (std::size_t i = 0; i < corners.size(); ++i)
+    for (int s : corners[i]) fans[root(int(i))].push_back(s);
+  for (auto &[r, segs] : fans) {
+    std::vector<int> bounds, inner;
+    for (int s : segs) {
+      if (!endOf.count(s)) continue;
+      if (!smooth(s)) bounds.push_back(s);
+      else if (std::find(inner.begin(), inner.end(), s) == inner.end()) inner.push_back(s);
+    }
+    if (inner.empty()) continue;
+    std::string curves;
+    for (int s : inner) curves += (curves.empty() ? "" : ", ") + std::to_string(endOf[s]->sourceCurve);
+    const std::string fan = where + "fan of curves " + curves + ": ";
+    if (bounds.size() != 2) {
+      skipped.push_back(fan + std::to_string(bounds.size()) + " crease or boundary curves bound it, not 2");
+      continue;
+    }
+    const Vec3 t1 = endOf[bounds[0]]->tangent, t2 = endOf[bounds[1]]->tangent;
+    Vec3 n = cross(t1, t2);
+    if (norm(n) < std::sin(kMaxCreaseTurn)) {
+      // A crease line running (nearly) straight through: the plane holds its
+      // direction and the G¹ curves' mean direction across it (their
+      // least-squares plane about that line).
+      const Vec3 line = normalized(t1 - t2);
+      double xx = 0, xy = 0, yy = 0;
+      const Vec3 e1 = normalized(cross(line, std::abs(line.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
+      const Vec3 e2 = cross(line, e1);
+      for (int s : inner) {
+        const double x = dot(endOf[s]->tangent, e1), y = dot(endOf[s]->tangent, e2);
+        xx += x * x, xy += x * y, yy += y * y;
+      }
+      // The direction (in the e1, e2 plane) of largest spread; n is normal to it and the line.
+      const double phi = 0.5 * std::atan2(2 * xy, xx - yy);
+      n = cross(line, e1 * std::cos(phi) + e2 * std::sin(phi));
+    }
+    n = normalized(n);
+    std::vector<std::pair<int, EndTurn>> turns;
+    bool refused = false;
+    for (int s : inner) {
+      const CurveEnd &end = *endOf[s];
+      if (std::abs(dot(end.tangent, n)) <= std::sin(tolerance)) continue;
+      for (const CurveEnd &other : va.ends)
+        if (&other != &end && other.sourceCurve == end.sourceCurve && other.sourceParameter == end.sourceParameter) {
+          skipped.push_back(fan + "curve " + std::to_string(end.sourceCurve) + " passes through the vertex");
+          refused = true;
+        }
+      if (refused) break;
+      turns.emplace_back(end.sourceCurve, turnInto(va, end, n));
+      if (angleBetween(end.tangent, turns.back().second.to) > kMaxCreaseTurn) {
+        skipped.push_back(fan + "needs a turn of more than 16°");
+        refused = true;
+        break;
+      }
+    }
+    if (refused) continue;
+    for (const auto &[curve, turn] : turns) byCurve[curve].push_back(turn);
+  }
+}
+
+/// Step 1 on every vertex without a tangent plane: turned into the fitted
+/// plane, or at a crease per fan (turnCreaseFans).
 NetworkDescription turnTangents(const Network &network, const NetworkAnalysis &analysis, double tolerance,
-                                std::vector<RepairMove> &moves) {
+                                std::vector<RepairMove> &moves, std::vector<std::string> &skipped) {
   NetworkDescription out = network.description();
+  const std::vector<VertexFrame> frames = computeVertexFrames(network);
   std::map<int, std::vector<EndTurn>> byCurve;
   for (const VertexAnalysis &va : analysis.vertices) {
-    if (!(va.tangentResidual > tolerance) || isCrease(va)) continue;
-    for (const CurveEnd &end : va.ends) {
-      const Vec3 inPlane = end.tangent - va.normal * dot(end.tangent, va.normal);
-      if (squaredNorm(inPlane) == 0)
-        throw InputError("", "vertex " + std::to_string(va.vertex),
-                         "curve " + std::to_string(end.sourceCurve) +
-                             " leaves along the fitted normal; its tangent has no direction in the tangent plane");
-      byCurve[end.sourceCurve].push_back(
-          {va.vertex, end.sourceParameter, end.towardsLargerParameter, end.tangent, normalized(inPlane)});
+    if (!(va.tangentResidual > tolerance)) continue;
+    if (isCrease(va) && !frames[va.vertex].crease) continue; // normals given along the curves set its plane
+    if (frames[va.vertex].crease) {
+      turnCreaseFans(network, frames, va, tolerance, byCurve, skipped);
+      continue;
     }
+    for (const CurveEnd &end : va.ends) byCurve[end.sourceCurve].push_back(turnInto(va, end, va.normal));
   }
   for (auto &[curve, turns] : byCurve) out.curves[curve] = turnCurve(network, curve, std::move(turns), moves);
   return out;
@@ -141,7 +281,7 @@ RepairResult repairNetwork(const Network &network, const RepairOptions &options)
   const NetworkAnalysis analysis = analyzeNetwork(network, options.analysis);
   std::optional<Network> turned;
   if (options.tangentPlanes && analysis.maxTangentResidual > options.tangentTolerance) {
-    result.network = turnTangents(network, analysis, options.tangentTolerance, result.moves);
+    result.network = turnTangents(network, analysis, options.tangentTolerance, result.moves, result.skipped);
     if (!result.moves.empty()) turned = Network::build(result.network, network.name());
   } else {
     result.network = network.description();
