@@ -447,52 +447,40 @@ const NormalFence *fenceOf(const Impl &impl, int e, int f) {
   return second ? impl.creaseFences[e].get() : impl.fences[e].get();
 }
 
-/// gregory-g1: the first of these that does not fold, for a patch that
-/// folds as built (docs/surfaces.md, Folds). Eq. 17's corners alone, then
-/// the two-ribbon blend at every corner (corners far from the regular
-/// n-gon's angle); then the same with the ribbons' cross-derivatives at
-/// three quarters and at half their length, which the end targets take
-/// from the neighbouring curves' parameter speed, whatever the face's
-/// extent across (a planar half disc with a wavy rim reached past its
-/// diameter). Each stays G¹: T keeps its fence's tangent plane, and both
-/// corner forms meet each ribbon to first order on its own side whatever
-/// the two ribbons' disagreement at the corner. A variant is taken when it
-/// folds neither on the fold grid nor on one of kFineFoldRows rows (box.obj's
-/// triangles with the blend pass the first and fold near their centre on
-/// the second; at 3/4 length they pass both); failing that, the first that
-/// passes the fold grid; `built` when all fold.
+/// The first of these variants of a patch that folds as built (with the
+/// corner shares `asked` its ribbons ask for) that does not fold
+/// (docs/surfaces.md, Folds): eq. 17's corners alone (μ = 0 everywhere), the
+/// two-ribbon blend at every corner (μ = 1), then both again with the
+/// ribbons' cross-derivatives at three quarters and at half their length.
+/// `build(scale, share)` makes one: the end targets scaled (they take the
+/// neighbouring curves' parameter speed, whatever the face's extent across:
+/// a planar half disc with a wavy rim reached past its diameter) and every
+/// share set to `share`. Each variant keeps the scheme's continuity across
+/// the sides: T stays in its fence's tangent plane, a parabolic ribbon's C is
+/// II(T, T) N of the scaled T (the same second fundamental form), and both
+/// corner forms meet each ribbon to the scheme's order on its own side
+/// whatever the two ribbons' disagreement at the corner. A variant is taken
+/// when `accepts` it and it folds neither on the fold grid nor on one of
+/// kFineFoldRows rows (box.obj's triangles with the blend pass the first and
+/// fold near their centre on the second; at 3/4 length they pass both);
+/// failing that, the first that passes the fold grid; null when all fold.
 /// Three times the fold grid, below Patch::kTableResolution: no ribbon
 /// tables are built for a variant.
 constexpr int kFineFoldRows = 3 * kFoldRows;
 static_assert(kFineFoldRows < Patch::kTableResolution);
-template <class Folds>
-FaceBuild unfoldedG1(const FaceBuild &built, const std::vector<LinearRibbon> &linear,
-                     const std::vector<Vec3> &startTargets, const std::vector<Vec3> &endTargets,
-                     const SurfaceOptions &options, const Folds &folds) {
-  const std::vector<double> &asked = built.patch->blendShares();
+template <class Build, class Accepts, class Folds>
+std::shared_ptr<const Patch> unfoldedVariant(const std::vector<double> &asked, const Build &build,
+                                             const Accepts &accepts, const Folds &folds) {
   std::shared_ptr<const Patch> coarse;
-  bool fine = false;
-  for (const double scale : {1.0, 0.75, 0.5}) {
-    if (fine) break;
-    std::vector<LinearRibbon> ribbons = linear;
-    if (scale != 1.0)
-      for (std::size_t i = 0; i < ribbons.size(); ++i)
-        ribbons[i].setEndConditions(startTargets[i] * scale, endTargets[i] * scale, LinearRibbon::ScalarBlend::Linear);
+  for (const double scale : {1.0, 0.75, 0.5})
     for (const double share : {0.0, 1.0}) {
       if (scale == 1.0 && std::all_of(asked.begin(), asked.end(), [share](double mu) { return mu == share; })) continue;
-      auto candidate = std::make_shared<const Patch>(ribbons, options, std::vector<ParabolicRibbon>{},
-                                                     std::vector<double>(ribbons.size(), share));
-      if (folds(*candidate, kFoldRows)) continue;
-      fine = !folds(*candidate, kFineFoldRows);
-      if (fine || !coarse) coarse = std::move(candidate);
-      if (fine) break;
+      std::shared_ptr<const Patch> candidate = build(scale, share);
+      if (folds(*candidate, kFoldRows) || !accepts(*candidate)) continue;
+      if (!folds(*candidate, kFineFoldRows)) return candidate;
+      if (!coarse) coarse = std::move(candidate);
     }
-  }
-  if (!coarse) return built;
-  FaceBuild result = built;
-  result.patch = std::move(coarse);
-  result.folded = false;
-  return result;
+  return coarse;
 }
 
 FaceBuild buildFace(const Impl &impl, int f) {
@@ -571,11 +559,12 @@ FaceBuild buildFace(const Impl &impl, int f) {
   // quintic blend of α, β (and the corner-term matching) is for: there it
   // takes the linear blend of the unit frame, as the G¹ ribbons do, whose
   // |T| stays within its end values.
-  auto g2Patch = [&](std::vector<LinearRibbon> sideRibbons, std::vector<double> shares) {
+  auto g2Patch = [&](std::vector<LinearRibbon> sideRibbons, std::vector<double> shares, double scale = 1.0) {
     std::vector<ParabolicRibbon> parabolic = matchCornerTerms(sideRibbons, parabolicOf);
     for (int i = 0; i < n; ++i)
       if (shares[i] == 1 && shares[(i + 1) % n] == 1) {
-        sideRibbons[i].setEndConditions(startTargets[i], endTargets[i], LinearRibbon::ScalarBlend::Linear);
+        sideRibbons[i].setEndConditions(startTargets[i] * scale, endTargets[i] * scale,
+                                        LinearRibbon::ScalarBlend::Linear);
         parabolic[i] = parabolicOf(sideRibbons[i]);
       }
     return std::make_shared<const Patch>(std::move(sideRibbons), impl.options, std::move(parabolic), std::move(shares));
@@ -604,22 +593,29 @@ FaceBuild buildFace(const Impl &impl, int f) {
     result.patch = std::make_shared<const Patch>(std::move(ribbons), impl.options);
   }
   result.folded = folds(*result.patch);
-  // The shares say where the correction patch would carry the ribbons'
-  // disagreement too far, not whether the face folds: a gregory-g2 face
-  // that folds with them is rebuilt with eq. 17 at every corner, then with
-  // the two-ribbon blend at every corner, and the first of these that does
-  // not fold is kept (docs/surfaces.md, Folds). Both are G² across the sides.
-  if (g2 && result.folded)
-    for (double uniform : {0.0, 1.0}) {
-      if (std::all_of(blendShares.begin(), blendShares.end(), [&](double mu) { return mu == uniform; })) continue;
-      std::shared_ptr<const Patch> candidate = g2Patch(ribbons, std::vector<double>(n, uniform));
-      if (!folds(*candidate) && facesItsFences(*candidate)) {
-        result.patch = std::move(candidate);
-        result.folded = false;
-        break;
-      }
+  // A face that folds with the shares its ribbons ask for is built again
+  // with uniform shares and shorter cross-derivatives (unfoldedVariant).
+  // gregory-g2 also wants each side's normal to face its fence (a face turned
+  // over along a side meets its neighbour's normals there and passes the
+  // fold grid).
+  if (result.folded && (g1 || g2)) {
+    auto build = [&](double scale, double share) -> std::shared_ptr<const Patch> {
+      std::vector<LinearRibbon> scaled = g2 ? ribbons : linear;
+      if (scale != 1.0)
+        for (int i = 0; i < n; ++i)
+          scaled[i].setEndConditions(startTargets[i] * scale, endTargets[i] * scale,
+                                     g2 ? LinearRibbon::ScalarBlend::Quintic : LinearRibbon::ScalarBlend::Linear);
+      if (g2) return g2Patch(std::move(scaled), std::vector<double>(n, share), scale);
+      return std::make_shared<const Patch>(std::move(scaled), impl.options, std::vector<ParabolicRibbon>{},
+                                           std::vector<double>(n, share));
+    };
+    auto accepts = [g2](const Patch &patch) { return !g2 || facesItsFences(patch); };
+    if (std::shared_ptr<const Patch> unfolded =
+            unfoldedVariant(g2 ? blendShares : result.patch->blendShares(), build, accepts, folds)) {
+      result.patch = std::move(unfolded);
+      result.folded = false;
     }
-  if (result.folded && g1) result = unfoldedG1(result, linear, startTargets, endTargets, impl.options, folds);
+  }
   return result;
 }
 
