@@ -45,166 +45,232 @@ template <class V> struct DualV {
   V v, u, w; // value, ∂/∂u, ∂/∂v
 };
 
+/// Corner i's parameters with their partials: s = s_i, sp = s_{i−1},
+/// t = 1 − s_{i−1}, and the cross parameters δ = sc of R_{i−1} and δ = tc
+/// of R_i, each saturated at its ribbon's reach (G², GregorySamples::reach)
+/// with the chain rule through r tanh(x / r). Q takes the same pair, the
+/// blends s and t.
+template <class V> struct CornerParameters {
+  DualV<V> s, sp, t, sc, tc;
+};
+
+template <bool Parabolic, class D>
+HWY_INLINE CornerParameters<hn::Vec<D>> cornerParameters(D d, std::size_t k, const ck::GregoryJetSamples &in, int i,
+                                                         int prev) {
+  using V = hn::Vec<D>;
+  auto load = [&](const double *p) { return hn::LoadU(d, p + k); };
+  CornerParameters<V> p;
+  p.s = {load(in.values.s[i]), load(in.sDu[i]), load(in.sDv[i])};
+  p.sp = {load(in.values.s[prev]), load(in.sDu[prev]), load(in.sDv[prev])};
+  p.t = {hn::Sub(hn::Set(d, 1.0), p.sp.v), hn::Neg(p.sp.u), hn::Neg(p.sp.w)};
+  p.sc = p.s, p.tc = p.t;
+  if constexpr (Parabolic) {
+    auto saturate = [&](DualV<V> &x, double reach) {
+      if (reach >= 1) return;
+      V slope;
+      x.v = saturatedCross(d, x.v, reach, &slope);
+      x.u = hn::Mul(slope, x.u), x.w = hn::Mul(slope, x.w);
+    };
+    saturate(p.sc, in.values.reach[prev]), saturate(p.tc, in.values.reach[i]);
+  }
+  return p;
+}
+
+/// G² blend share μ (GregorySamples::blendShare): the weights 1 − μ (1 − λ)
+/// of R_{i−1} and 1 − μ λ of R_i, with their partials ±μ ∂λ; 1 and 1 at μ = 0.
+template <class V> struct RibbonShares {
+  DualV<V> previous, own;
+};
+
+template <bool Parabolic, class D>
+HWY_INLINE RibbonShares<hn::Vec<D>> ribbonShares(D d, const CornerParameters<hn::Vec<D>> &p, double mu) {
+  using V = hn::Vec<D>;
+  const V one = hn::Set(d, 1.0);
+  RibbonShares<V> shares{{one, hn::Zero(d), hn::Zero(d)}, {one, hn::Zero(d), hn::Zero(d)}};
+  if (mu == 0) return shares;
+  V lambdaS, lambdaT;
+  const V lambda = sideBlendWeight<Parabolic ? 3 : 2>(d, p.s.v, p.t.v, &lambdaS, &lambdaT), m = hn::Set(d, mu);
+  const V lambdaU = hn::MulAdd(lambdaS, p.s.u, hn::Mul(lambdaT, p.t.u));
+  const V lambdaW = hn::MulAdd(lambdaS, p.s.w, hn::Mul(lambdaT, p.t.w));
+  shares.previous = {hn::MulAdd(m, lambda, hn::Set(d, 1.0 - mu)), hn::Mul(m, lambdaU), hn::Mul(m, lambdaW)};
+  shares.own = {hn::NegMulAdd(m, lambda, one), hn::Neg(shares.previous.u), hn::Neg(shares.previous.w)};
+  return shares;
+}
+
+/// The corner's ribbon terms into term[value, ∂/∂u, ∂/∂v][x, y, z]:
+/// R_{i−1}(σ = s_{i−1}, δ = sc) + R_i(σ = s, δ = tc), each weighted by its
+/// share when μ ≠ 0; for R(σ, δ): value P + δT [+ ½δ²C],
+/// ∂ = σ' (P' + δT' [+ ½δ²C']) + δ' (T [+ δC]).
+template <bool Parabolic, class D, class V>
+HWY_INLINE void ribbonTerms(D d, std::size_t k, const ck::GregoryJetSamples &in, int i, int prev,
+                            const CornerParameters<V> &p, const RibbonShares<V> &shares, double mu, V (&term)[3][3]) {
+  const ck::GregorySamples &val = in.values;
+  auto load = [&](const double *q) { return hn::LoadU(d, q + k); };
+  const V half = hn::Set(d, 0.5);
+  const DualV<V> &s = p.s, &sp = p.sp, &sc = p.sc, &tc = p.tc;
+  const V hs2 = hn::Mul(half, hn::Mul(sc.v, sc.v)), ht2 = hn::Mul(half, hn::Mul(tc.v, tc.v));
+  for (int c = 0; c < 3; ++c) {
+    V lv = hn::MulAdd(sc.v, load(val.T[prev][c]), load(val.P[prev][c]));
+    V lslope = hn::MulAdd(sc.v, load(in.dT[prev][c]), load(in.dP[prev][c]));
+    V lacross = load(val.T[prev][c]);
+    V rv = hn::MulAdd(tc.v, load(val.T[i][c]), load(val.P[i][c]));
+    V rslope = hn::MulAdd(tc.v, load(in.dT[i][c]), load(in.dP[i][c]));
+    V racross = load(val.T[i][c]);
+    if constexpr (Parabolic) {
+      const V lc = load(val.C[prev][c]), rc = load(val.C[i][c]);
+      lv = hn::MulAdd(hs2, lc, lv), rv = hn::MulAdd(ht2, rc, rv);
+      lslope = hn::MulAdd(hs2, load(in.dC[prev][c]), lslope), rslope = hn::MulAdd(ht2, load(in.dC[i][c]), rslope);
+      lacross = hn::MulAdd(sc.v, lc, lacross), racross = hn::MulAdd(tc.v, rc, racross);
+    }
+    if (mu != 0) {
+      // (1 − μ (1 − λ)) R_{i−1} + (1 − μ λ) R_i with the product rule.
+      const DualV<V> &previous = shares.previous, &own = shares.own;
+      const V lu = hn::MulAdd(sp.u, lslope, hn::Mul(sc.u, lacross)), lw = hn::MulAdd(sp.w, lslope, hn::Mul(sc.w, lacross));
+      const V ru = hn::MulAdd(s.u, rslope, hn::Mul(tc.u, racross)), rw = hn::MulAdd(s.w, rslope, hn::Mul(tc.w, racross));
+      const V gap = hn::Sub(lv, rv);
+      term[0][c] = hn::MulAdd(previous.v, lv, hn::Mul(own.v, rv));
+      term[1][c] = hn::MulAdd(previous.v, lu, hn::MulAdd(own.v, ru, hn::Mul(previous.u, gap)));
+      term[2][c] = hn::MulAdd(previous.v, lw, hn::MulAdd(own.v, rw, hn::Mul(previous.w, gap)));
+      continue;
+    }
+    term[0][c] = hn::Add(lv, rv);
+    term[1][c] = hn::MulAdd(sp.u, lslope, hn::MulAdd(sc.u, lacross, hn::MulAdd(s.u, rslope, hn::Mul(tc.u, racross))));
+    term[2][c] = hn::MulAdd(sp.w, lslope, hn::MulAdd(sc.w, lacross, hn::MulAdd(s.w, rslope, hn::Mul(tc.w, racross))));
+  }
+}
+
+/// The polynomial part Σ s^p t^r taylor[p][r] of a G² correction patch
+/// (GregoryCornerTerms) in Horner form, into q[value, ∂/∂s, ∂/∂t][x, y, z].
+template <class D, class V>
+HWY_INLINE void g2TaylorJet(D d, V s, V t, const ck::GregoryCornerTerms &terms, V (&q)[3][3]) {
+  const V two = hn::Set(d, 2.0);
+  for (int c = 0; c < 3; ++c) {
+    V h[3], dh[3];
+    for (int p = 0; p <= 2; ++p) {
+      const V t0 = hn::Set(d, terms.taylor[p][0][c]), t1 = hn::Set(d, terms.taylor[p][1][c]);
+      const V t2 = hn::Set(d, terms.taylor[p][2][c]);
+      h[p] = hn::MulAdd(t, hn::MulAdd(t, t2, t1), t0);
+      dh[p] = hn::MulAdd(hn::Mul(two, t), t2, t1);
+    }
+    q[0][c] = hn::MulAdd(s, hn::MulAdd(s, h[2], h[1]), h[0]);
+    q[1][c] = hn::MulAdd(hn::Mul(two, s), h[2], h[1]);
+    q[2][c] = hn::MulAdd(s, hn::MulAdd(s, dh[2], dh[1]), dh[0]);
+  }
+}
+
+/// The rational part Σ_j ρ_j rational[j] of a G² correction patch added to
+/// q, ρ_j = s³ t^r / (s^{3−p} + t^{3−r}) with
+///   ∂ρ/∂s = s² t^r (3 t^{3−r} + p s^{3−p}) / den²,
+///   ∂ρ/∂t = s³ t^{r−1} (r s^{3−p} + (2r − 3) t^{3−r}) / den²  (r = 0: −3 s³ t² / den²).
+template <class D, class V>
+HWY_INLINE void addG2RationalJet(D d, V s, V t, const ck::GregoryCornerTerms &terms, V (&q)[3][3]) {
+  V sp3[4], tp3[4], inv[8];
+  g2CornerWeights(d, s, t, sp3, tp3, inv);
+  // s^2 t^r and s^3 t^r for r = 0, 1, 2, shared by the rows p.
+  const V s2t[3] = {sp3[2], hn::Mul(sp3[2], tp3[1]), hn::Mul(sp3[2], tp3[2])};
+  const V s3t[3] = {sp3[3], hn::Mul(sp3[3], tp3[1]), hn::Mul(sp3[3], tp3[2])};
+  int j = 0;
+  for (int p = 0; p <= 2; ++p)
+    for (int r = 0; r <= 2; ++r) {
+      if (!p && !r) continue;
+      const V x = sp3[3 - p], y = tp3[3 - r], i1 = inv[j], i2 = hn::Mul(i1, i1);
+      const V rho = hn::Mul(s3t[r], i1);
+      const V rhoS = hn::Mul(hn::Mul(s2t[r], hn::MulAdd(hn::Set(d, p), x, hn::Mul(hn::Set(d, 3.0), y))), i2);
+      const V rhoT =
+          r ? hn::Mul(hn::Mul(s3t[r - 1], hn::MulAdd(hn::Set(d, r), x, hn::Mul(hn::Set(d, 2 * r - 3), y))), i2)
+            : hn::Mul(hn::Mul(hn::Set(d, -3.0), hn::Mul(sp3[3], tp3[2])), i2);
+      for (int c = 0; c < 3; ++c) {
+        const V R = hn::Set(d, terms.rational[j][c]);
+        q[0][c] = hn::MulAdd(rho, R, q[0][c]);
+        q[1][c] = hn::MulAdd(rhoS, R, q[1][c]);
+        q[2][c] = hn::MulAdd(rhoT, R, q[2][c]);
+      }
+      ++j;
+    }
+}
+
+/// term −= (1 − μ) Q for a G² corner: Q and its partials in s and t, then
+/// the chain rule through sc and tc once per corner, not per term.
+template <class D, class V>
+HWY_INLINE void subtractG2Correction(D d, const CornerParameters<V> &p, const ck::GregoryCornerTerms &terms, double mu,
+                                     V (&term)[3][3]) {
+  V q[3][3]; // [value, ∂/∂s, ∂/∂t][x, y, z]
+  g2TaylorJet(d, p.sc.v, p.tc.v, terms, q);
+  addG2RationalJet(d, p.sc.v, p.tc.v, terms, q);
+  if (mu != 0) {
+    const V keep = hn::Set(d, 1.0 - mu);
+    for (auto &row : q)
+      for (V &x : row) x = hn::Mul(keep, x);
+  }
+  for (int c = 0; c < 3; ++c) {
+    term[0][c] = hn::Sub(term[0][c], q[0][c]);
+    term[1][c] = hn::NegMulAdd(q[1][c], p.sc.u, hn::NegMulAdd(q[2][c], p.tc.u, term[1][c]));
+    term[2][c] = hn::NegMulAdd(q[1][c], p.sc.w, hn::NegMulAdd(q[2][c], p.tc.w, term[2][c]));
+  }
+}
+
+/// term −= (1 − μ) Q for a G¹ corner, Q = a00 + s W(a10, b10; s, t²) +
+/// t W(a01, b01; s², t) + s t W(a11, b11; s, t) with every f and its
+/// partials scaled by 1 − μ. Each f W(a, b; x, y), W = wa a + (1 − wa) b,
+/// wa = x / (x + y), x = x(s), y = y(t): fs, ft the partials of f,
+/// xs = dx/ds, yt = dy/dt, r = 1/(x + y).
+template <class D, class V>
+HWY_INLINE void subtractG1Correction(D d, const CornerParameters<V> &p, const ck::GregoryCorner &corner, double mu,
+                                     V (&term)[3][3]) {
+  const DualV<V> &s = p.s, &t = p.t;
+  const double(*vec)[3] = corner.v;
+  auto subtract = [&](V f, V fs, V ft, V x, V xs, V y, V yt, V r, int slot) {
+    const V wa = hn::Mul(x, r), r2 = hn::Mul(r, r);
+    const V A = hn::Mul(hn::Mul(xs, y), r2), B = hn::Mul(hn::Mul(x, yt), r2);
+    const V waU = hn::NegMulAdd(B, t.u, hn::Mul(A, s.u)), waV = hn::NegMulAdd(B, t.w, hn::Mul(A, s.w));
+    const V fU = hn::MulAdd(ft, t.u, hn::Mul(fs, s.u)), fV = hn::MulAdd(ft, t.w, hn::Mul(fs, s.w));
+    const V fa = hn::Mul(f, wa);
+    const V faU = hn::MulAdd(fU, wa, hn::Mul(f, waU)), faV = hn::MulAdd(fV, wa, hn::Mul(f, waV));
+    const V fb = hn::Sub(f, fa), fbU = hn::Sub(fU, faU), fbV = hn::Sub(fV, faV);
+    for (int c = 0; c < 3; ++c) {
+      const V va = hn::Set(d, vec[slot][c]), vb = hn::Set(d, vec[slot + 1][c]);
+      term[0][c] = hn::NegMulAdd(fa, va, hn::NegMulAdd(fb, vb, term[0][c]));
+      term[1][c] = hn::NegMulAdd(faU, va, hn::NegMulAdd(fbU, vb, term[1][c]));
+      term[2][c] = hn::NegMulAdd(faV, va, hn::NegMulAdd(fbV, vb, term[2][c]));
+    }
+  };
+  const V keep = hn::Set(d, 1.0 - mu), zero = hn::Zero(d), one = hn::Set(d, 1.0);
+  for (int c = 0; c < 3; ++c) term[0][c] = hn::NegMulAdd(keep, hn::Set(d, vec[0][c]), term[0][c]);
+  const V s2 = hn::Mul(s.v, s.v), t2 = hn::Mul(t.v, t.v), two = hn::Set(d, 2.0);
+  V den[3] = {hn::Add(s.v, t2), hn::Add(s2, t.v), hn::Add(s.v, t.v)};
+  reciprocals(d, den);
+  // s W(a10, b10; s, t²), t W(a01, b01; s², t), s t W(a11, b11; s, t).
+  const V st = hn::Mul(s.v, t.v), kt = hn::Mul(keep, t.v), ks = hn::Mul(keep, s.v);
+  subtract(ks, keep, zero, s.v, one, t2, hn::Mul(two, t.v), den[0], 1);
+  subtract(kt, zero, keep, s2, hn::Mul(two, s.v), t.v, one, den[1], 3);
+  subtract(hn::Mul(keep, st), kt, ks, s.v, one, t.v, one, den[2], 5);
+}
+
+/// The Gregory formula's jet at samples k … k + lanes − 1:
+/// Σ_i B_i I_i with the product rule, I_i = R_{i−1} + R_i − Q_i with corner
+/// i's blend share taken from the two-ribbon blend.
 template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size_t k, const GregoryJetArgs &a) {
   using V = hn::Vec<D>;
   const ck::GregoryJetSamples &in = *a.in;
-  const ck::GregorySamples &val = in.values;
-  const int n = val.sides;
-  const V one = hn::Set(d, 1.0), half = hn::Set(d, 0.5);
+  const int n = in.values.sides;
   V acc[3][3]; // [value, du, dv][x, y, z]
   for (auto &row : acc)
     for (V &x : row) x = hn::Zero(d);
-  auto load = [&](const double *p) { return hn::LoadU(d, p + k); };
   for (int i = 0; i < n; ++i) {
     const int prev = i == 0 ? n - 1 : i - 1;
-    const DualV<V> s{load(val.s[i]), load(in.sDu[i]), load(in.sDv[i])};
-    const DualV<V> sp{load(val.s[prev]), load(in.sDu[prev]), load(in.sDv[prev])};
-    const DualV<V> t{hn::Sub(one, sp.v), hn::Neg(sp.u), hn::Neg(sp.w)};
-    const DualV<V> blend{load(val.blend[i]), load(in.blendDu[i]), load(in.blendDv[i])};
-    // The cross parameters: δ = s of R_{i−1} and δ = t of R_i, each saturated
-    // at its ribbon's reach (G², GregorySamples::reach) with the chain rule
-    // through r tanh(x / r); Q takes the same pair, the blends s and t.
-    DualV<V> sc = s, tc = t;
-    if constexpr (Parabolic) {
-      auto saturate = [&](DualV<V> &x, double reach) {
-        if (reach >= 1) return;
-        V slope;
-        x.v = saturatedCross(d, x.v, reach, &slope);
-        x.u = hn::Mul(slope, x.u), x.w = hn::Mul(slope, x.w);
-      };
-      saturate(sc, val.reach[prev]), saturate(tc, val.reach[i]);
-    }
-    // I = R_{i−1}(σ = s_{i−1}, δ = sc) + R_i(σ = s, δ = tc) − Q; for R(σ, δ):
-    // value P + δT [+ ½δ²C], ∂ = σ' (P' + δT' [+ ½δ²C']) + δ' (T [+ δC]).
+    const CornerParameters<V> p = cornerParameters<Parabolic>(d, k, in, i, prev);
+    const double mu = in.values.blendShare[i];
     V term[3][3];
-    const V hs2 = hn::Mul(half, hn::Mul(sc.v, sc.v)), ht2 = hn::Mul(half, hn::Mul(tc.v, tc.v));
-    // G² blend share μ (GregorySamples::blendShare): the ribbons' weights
-    // 1 − μ (1 − λ) and 1 − μ λ with their partials ±μ ∂λ.
-    const double mu = val.blendShare[i];
-    DualV<V> previousShare{one, hn::Zero(d), hn::Zero(d)}, ownShare = previousShare;
-    if (mu != 0) {
-      V lambdaS, lambdaT;
-      const V lambda = sideBlendWeight<Parabolic ? 3 : 2>(d, s.v, t.v, &lambdaS, &lambdaT), m = hn::Set(d, mu);
-      const V lambdaU = hn::MulAdd(lambdaS, s.u, hn::Mul(lambdaT, t.u));
-      const V lambdaW = hn::MulAdd(lambdaS, s.w, hn::Mul(lambdaT, t.w));
-      previousShare = {hn::MulAdd(m, lambda, hn::Set(d, 1.0 - mu)), hn::Mul(m, lambdaU), hn::Mul(m, lambdaW)};
-      ownShare = {hn::NegMulAdd(m, lambda, one), hn::Neg(previousShare.u), hn::Neg(previousShare.w)};
-    }
-    for (int c = 0; c < 3; ++c) {
-      V lv = hn::MulAdd(sc.v, load(val.T[prev][c]), load(val.P[prev][c]));
-      V lslope = hn::MulAdd(sc.v, load(in.dT[prev][c]), load(in.dP[prev][c]));
-      V lacross = load(val.T[prev][c]);
-      V rv = hn::MulAdd(tc.v, load(val.T[i][c]), load(val.P[i][c]));
-      V rslope = hn::MulAdd(tc.v, load(in.dT[i][c]), load(in.dP[i][c]));
-      V racross = load(val.T[i][c]);
-      if constexpr (Parabolic) {
-        const V lc = load(val.C[prev][c]), rc = load(val.C[i][c]);
-        lv = hn::MulAdd(hs2, lc, lv), rv = hn::MulAdd(ht2, rc, rv);
-        lslope = hn::MulAdd(hs2, load(in.dC[prev][c]), lslope), rslope = hn::MulAdd(ht2, load(in.dC[i][c]), rslope);
-        lacross = hn::MulAdd(sc.v, lc, lacross), racross = hn::MulAdd(tc.v, rc, racross);
-      }
-      if (mu != 0) {
-        // (1 − μ (1 − λ)) R_{i−1} + (1 − μ λ) R_i with the product rule.
-        const V lu = hn::MulAdd(sp.u, lslope, hn::Mul(sc.u, lacross)), lw = hn::MulAdd(sp.w, lslope, hn::Mul(sc.w, lacross));
-        const V ru = hn::MulAdd(s.u, rslope, hn::Mul(tc.u, racross)), rw = hn::MulAdd(s.w, rslope, hn::Mul(tc.w, racross));
-        const V gap = hn::Sub(lv, rv);
-        term[0][c] = hn::MulAdd(previousShare.v, lv, hn::Mul(ownShare.v, rv));
-        term[1][c] = hn::MulAdd(previousShare.v, lu, hn::MulAdd(ownShare.v, ru, hn::Mul(previousShare.u, gap)));
-        term[2][c] = hn::MulAdd(previousShare.v, lw, hn::MulAdd(ownShare.v, rw, hn::Mul(previousShare.w, gap)));
-        continue;
-      }
-      term[0][c] = hn::Add(lv, rv);
-      term[1][c] = hn::MulAdd(sp.u, lslope, hn::MulAdd(sc.u, lacross, hn::MulAdd(s.u, rslope, hn::Mul(tc.u, racross))));
-      term[2][c] = hn::MulAdd(sp.w, lslope, hn::MulAdd(sc.w, lacross, hn::MulAdd(s.w, rslope, hn::Mul(tc.w, racross))));
-    }
-    const V zero = hn::Zero(d);
+    ribbonTerms<Parabolic>(d, k, in, i, prev, p, ribbonShares<Parabolic>(d, p, mu), mu, term);
     if (mu == 1) {
       // The two-ribbon blend alone: no correction patch.
     } else if constexpr (Parabolic) {
-      // Q in the form of GregoryCornerTerms with its partials in s and t:
-      // Q = Σ s^p t^r taylor[p][r] + Σ_j ρ_j rational[j], ρ_j = s³ t^r / (s^{3−p} + t^{3−r}),
-      //   ∂ρ/∂s = s² t^r (3 t^{3−r} + p s^{3−p}) / den²,
-      //   ∂ρ/∂t = s³ t^{r−1} (r s^{3−p} + (2r − 3) t^{3−r}) / den²  (r = 0: −3 s³ t² / den²),
-      // then the chain rule through s and t once per corner, not per term.
-      V sp3[4], tp3[4], inv[8];
-      g2CornerWeights(d, sc.v, tc.v, sp3, tp3, inv);
-      const ck::GregoryCornerTerms &terms = a.terms[i];
-      V q[3][3]; // [value, ∂/∂s, ∂/∂t][x, y, z]
-      const V two = hn::Set(d, 2.0);
-      for (int c = 0; c < 3; ++c) {
-        V h[3], dh[3];
-        for (int p = 0; p <= 2; ++p) {
-          const V t0 = hn::Set(d, terms.taylor[p][0][c]), t1 = hn::Set(d, terms.taylor[p][1][c]);
-          const V t2 = hn::Set(d, terms.taylor[p][2][c]);
-          h[p] = hn::MulAdd(tc.v, hn::MulAdd(tc.v, t2, t1), t0);
-          dh[p] = hn::MulAdd(hn::Mul(two, tc.v), t2, t1);
-        }
-        q[0][c] = hn::MulAdd(sc.v, hn::MulAdd(sc.v, h[2], h[1]), h[0]);
-        q[1][c] = hn::MulAdd(hn::Mul(two, sc.v), h[2], h[1]);
-        q[2][c] = hn::MulAdd(sc.v, hn::MulAdd(sc.v, dh[2], dh[1]), dh[0]);
-      }
-      // s^2 t^r and s^3 t^r for r = 0, 1, 2, shared by the rows p.
-      const V s2t[3] = {sp3[2], hn::Mul(sp3[2], tp3[1]), hn::Mul(sp3[2], tp3[2])};
-      const V s3t[3] = {sp3[3], hn::Mul(sp3[3], tp3[1]), hn::Mul(sp3[3], tp3[2])};
-      int j = 0;
-      for (int p = 0; p <= 2; ++p)
-        for (int r = 0; r <= 2; ++r) {
-          if (!p && !r) continue;
-          const V x = sp3[3 - p], y = tp3[3 - r], i1 = inv[j], i2 = hn::Mul(i1, i1);
-          const V rho = hn::Mul(s3t[r], i1);
-          const V rhoS = hn::Mul(hn::Mul(s2t[r], hn::MulAdd(hn::Set(d, p), x, hn::Mul(hn::Set(d, 3.0), y))), i2);
-          const V rhoT =
-              r ? hn::Mul(hn::Mul(s3t[r - 1], hn::MulAdd(hn::Set(d, r), x, hn::Mul(hn::Set(d, 2 * r - 3), y))), i2)
-                : hn::Mul(hn::Mul(hn::Set(d, -3.0), hn::Mul(sp3[3], tp3[2])), i2);
-          for (int c = 0; c < 3; ++c) {
-            const V R = hn::Set(d, terms.rational[j][c]);
-            q[0][c] = hn::MulAdd(rho, R, q[0][c]);
-            q[1][c] = hn::MulAdd(rhoS, R, q[1][c]);
-            q[2][c] = hn::MulAdd(rhoT, R, q[2][c]);
-          }
-          ++j;
-        }
-      if (mu != 0) {
-        const V keep = hn::Set(d, 1.0 - mu);
-        for (auto &row : q)
-          for (V &x : row) x = hn::Mul(keep, x);
-      }
-      for (int c = 0; c < 3; ++c) {
-        term[0][c] = hn::Sub(term[0][c], q[0][c]);
-        term[1][c] = hn::NegMulAdd(q[1][c], sc.u, hn::NegMulAdd(q[2][c], tc.u, term[1][c]));
-        term[2][c] = hn::NegMulAdd(q[1][c], sc.w, hn::NegMulAdd(q[2][c], tc.w, term[2][c]));
-      }
+      subtractG2Correction(d, p, a.terms[i], mu, term);
     } else {
-      // − f W(a, b; x, y) with W = wa a + (1 − wa) b, wa = x / (x + y), x = x(s),
-      // y = y(t): fs, ft the partials of f, xs = dx/ds, yt = dy/dt, r = 1/(x + y).
-      const double(*vec)[3] = a.corners[i].v;
-      auto subtract = [&](V f, V fs, V ft, V x, V xs, V y, V yt, V r, int slot) {
-        const V wa = hn::Mul(x, r), r2 = hn::Mul(r, r);
-        const V A = hn::Mul(hn::Mul(xs, y), r2), B = hn::Mul(hn::Mul(x, yt), r2);
-        const V waU = hn::NegMulAdd(B, t.u, hn::Mul(A, s.u)), waV = hn::NegMulAdd(B, t.w, hn::Mul(A, s.w));
-        const V fU = hn::MulAdd(ft, t.u, hn::Mul(fs, s.u)), fV = hn::MulAdd(ft, t.w, hn::Mul(fs, s.w));
-        const V fa = hn::Mul(f, wa);
-        const V faU = hn::MulAdd(fU, wa, hn::Mul(f, waU)), faV = hn::MulAdd(fV, wa, hn::Mul(f, waV));
-        const V fb = hn::Sub(f, fa), fbU = hn::Sub(fU, faU), fbV = hn::Sub(fV, faV);
-        for (int c = 0; c < 3; ++c) {
-          const V va = hn::Set(d, vec[slot][c]), vb = hn::Set(d, vec[slot + 1][c]);
-          term[0][c] = hn::NegMulAdd(fa, va, hn::NegMulAdd(fb, vb, term[0][c]));
-          term[1][c] = hn::NegMulAdd(faU, va, hn::NegMulAdd(fbU, vb, term[1][c]));
-          term[2][c] = hn::NegMulAdd(faV, va, hn::NegMulAdd(fbV, vb, term[2][c]));
-        }
-      };
-      // With a blend share μ, (1 − μ) Q: every f and its partials scaled.
-      const V keep = hn::Set(d, 1.0 - mu);
-      for (int c = 0; c < 3; ++c) term[0][c] = hn::NegMulAdd(keep, hn::Set(d, vec[0][c]), term[0][c]);
-      const V s2 = hn::Mul(s.v, s.v), t2 = hn::Mul(t.v, t.v), two = hn::Set(d, 2.0);
-      V den[3] = {hn::Add(s.v, t2), hn::Add(s2, t.v), hn::Add(s.v, t.v)};
-      reciprocals(d, den);
-      // s W(a10, b10; s, t²), t W(a01, b01; s², t), s t W(a11, b11; s, t).
-      const V st = hn::Mul(s.v, t.v), kt = hn::Mul(keep, t.v), ks = hn::Mul(keep, s.v);
-      subtract(ks, keep, zero, s.v, one, t2, hn::Mul(two, t.v), den[0], 1);
-      subtract(kt, zero, keep, s2, hn::Mul(two, s.v), t.v, one, den[1], 3);
-      subtract(hn::Mul(keep, st), kt, ks, s.v, one, t.v, one, den[2], 5);
+      subtractG1Correction(d, p, a.corners[i], mu, term);
     }
+    const DualV<V> blend{hn::LoadU(d, in.values.blend[i] + k), hn::LoadU(d, in.blendDu[i] + k),
+                         hn::LoadU(d, in.blendDv[i] + k)};
     for (int c = 0; c < 3; ++c) {
       acc[0][c] = hn::MulAdd(blend.v, term[0][c], acc[0][c]);
       acc[1][c] = hn::MulAdd(blend.u, term[0][c], hn::MulAdd(blend.v, term[1][c], acc[1][c]));
