@@ -421,7 +421,9 @@ void evaluateBoundaryNormals(const Surface &surface, const Layout &layout, const
     begin = end;
   }
   parallel::parallelFor(std::size_t{0}, batches.size(), [&](std::size_t item) {
-    const auto [begin, end] = batches[item];
+    // Named, not a structured binding: the inner lambda captures begin
+    // (C++20 allows it; clang 14, the fuzz build's compiler, does not).
+    const std::size_t begin = batches[item].first, end = batches[item].second;
     const BoundaryNormal &head = boundary[begin];
     const std::size_t count = end - begin;
     if (head.side >= 0) {
