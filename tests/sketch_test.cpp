@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "curvenet/continuity.hpp"
+#include "curvenet/curvenet.hpp"
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
 #include "curvenet/network.hpp"
@@ -270,6 +271,69 @@ TEST(Sketch, CubesWithStraightOrCurvedEdgesSurfaceWithoutFoldsAtTheirCreases) {
         EXPECT_GT(dot(n, corner), std::cos(1e-3)) << face.name << " corner " << k;
       }
   }
+}
+
+// A spherical cap of five triangles round its pole, closed by a flat
+// pentagon, one meridian bent so that it leaves the pole 25° out of the
+// others' plane: the triangles beside it crease there, and turning it into
+// the plane of the fan's crease curves would take more than the repair's
+// 16°. The repair leaves that fan alone and says so — in the Surface, the
+// Model and `check --json` — instead of passing over it in silence.
+TEST(Sketch, RepairNamesTheFansItLeavesAlone) {
+  const double latitude = 1.0, lift = std::tan(25 * kPi / 180);
+  auto sampled = [](auto point) {
+    std::vector<double> t;
+    std::vector<Vec3> p;
+    for (int k = 0; k <= 16; ++k) t.push_back(k / 16.0), p.push_back(point(k / 16.0));
+    return BSplineCurve::interpolate(3, t, p);
+  };
+  auto onCap = [](double theta, double phi) {
+    return Vec3{std::sin(phi) * std::cos(theta), std::sin(phi) * std::sin(theta), std::cos(phi)};
+  };
+  NetworkDescription cap;
+  for (int k = 0; k < 5; ++k) // meridians 0–4, pole to rim; meridian 0 bent up at the pole
+    cap.curves.push_back(sampled([&](double t) {
+      return onCap(2 * kPi * k / 5, latitude * t) + Vec3{0, 0, k == 0 ? lift * latitude * t * (1 - t) * (1 - t) : 0};
+    }));
+  for (int k = 0; k < 5; ++k) // rim arcs 5–9, counter-clockwise seen from the pole
+    cap.curves.push_back(sampled([&](double t) { return onCap(2 * kPi * (k + t) / 5, latitude); }));
+  for (int k = 0; k < 5; ++k) cap.faces.push_back({{{k, 0, 1}, {5 + k, 0, 1}, {(k + 1) % 5, 1, 0}}});
+  FaceDescription bottom;
+  for (int k = 4; k >= 0; --k) bottom.sides.push_back({5 + k, 1, 0});
+  cap.faces.push_back(bottom);
+  const Network network = Network::build(cap, "bent-meridian");
+  int pole = -1;
+  for (int v = 0; v < static_cast<int>(network.vertices().size()); ++v)
+    if (norm(network.vertices()[v].position - Vec3{0, 0, 1}) < 1e-9) pole = v;
+  ASSERT_GE(pole, 0);
+
+  const Surface surface = Surface::build(network, {Scheme::GregoryG1});
+  ASSERT_EQ(surface.repairSkipped().size(), 1u);
+  const std::string &reason = surface.repairSkipped()[0];
+  EXPECT_EQ(reason.rfind("vertex " + std::to_string(pole) + ": fan of curves 0: ", 0), 0u) << reason;
+  EXPECT_NE(reason.find("more than 16°"), std::string::npos) << reason;
+  for (const RepairMove &m : surface.repairMoves())
+    EXPECT_FALSE(m.vertex == pole && m.curve == 0 && m.kind == RepairKind::TangentPlane);
+  EXPECT_TRUE(surface.isCreaseVertex(pole));
+  // The curves as given: no repair, nothing left alone.
+  SurfaceOptions kept;
+  kept.curves = CurveHandling::Kept;
+  EXPECT_TRUE(Surface::build(network, kept).repairSkipped().empty());
+  // The Model reports it once, with a second group of another scheme too.
+  Result<Model> model = Model::build(cap);
+  ASSERT_TRUE(model) << model.status().message;
+  SurfaceOptions g2;
+  g2.scheme = Scheme::GregoryG2;
+  ASSERT_TRUE(model->setFaceOptions(0, g2).ok());
+  EXPECT_EQ(model->repairSkipped(), std::vector<std::string>{reason});
+  // And check --json lists it.
+  if (std::string(CURVENET_CLI).empty()) return;
+  test::ScratchDir scratch;
+  const std::string file = (scratch.path() / "cap.json").string();
+  writeFileAtomically(file, [&](std::ostream &out) { out << networkToJson(cap); });
+  const test::CliRun check = test::runCli("check '" + file + "' --json");
+  ASSERT_EQ(check.exitCode, 0) << check.err;
+  EXPECT_EQ(nlohmann::json::parse(check.out)["repair"]["skipped"], nlohmann::json::array({reason}));
 }
 
 TEST(Sketch, GreatCirclesGiveTheOctahedralNetworkWithSharedOrCrossingSamples) {

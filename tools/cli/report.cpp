@@ -95,9 +95,10 @@ nlohmann::json repairReport(const Surface &surface) {
   return {{"curves", curveHandlingName(surface.options().curves)},
           {"moves", std::move(moves)},
           {"max_move_relative", largest},
+          {"skipped", surface.repairSkipped()},
           {"note", "control points moved by the vertex repair (tangent-plane: end tangent turned into the vertex "
                    "plane; curvature: normal curvature set to the fitted tensor); sizes relative to the diagonal; "
-                   "vertices never move"}};
+                   "vertices never move; skipped: what the repair left alone, with the reason"}};
 }
 
 /// The crease vertices and segments (Surface::isCreaseVertex,
@@ -367,6 +368,10 @@ void printReportTable(const nlohmann::json &report) {
     std::printf("\nvertex repair (--curves %s): %zu control points moved, largest %.3g of the diagonal (--json lists "
                 "every move)\n",
                 r["curves"].get<std::string>().c_str(), r["moves"].size(), r["max_move_relative"].get<double>());
+  }
+  if (report.contains("repair") && !report["repair"].value("skipped", nlohmann::json::array()).empty()) {
+    std::printf("\nvertex repair left alone:\n");
+    for (const auto &reason : report["repair"]["skipped"]) std::printf("  %s\n", reason.get<std::string>().c_str());
   }
   if (report.contains("shape")) {
     const auto &sh = report["shape"];

@@ -259,6 +259,9 @@ public:
   /// Every control-point move the vertex repair made (SurfaceOptions::curves),
   /// over all groups, in group order (each group repairs for its scheme).
   std::vector<RepairMove> repairMoves() const;
+  /// What the vertex repair left alone (Surface::repairSkipped), over all
+  /// groups in group order, each reason once.
+  std::vector<std::string> repairSkipped() const;
 
   // ---- Options ----
 
@@ -383,6 +386,8 @@ public:
 private:
   struct Impl;
   explicit Model(std::unique_ptr<Impl> impl);
+  /// Each group's Surface once, in group order.
+  std::vector<const Surface *> groupSurfaces() const;
   std::unique_ptr<Impl> impl_;
 };
 

@@ -277,6 +277,10 @@ public:
   /// The control-point moves of the vertex repair (empty with
   /// CurveHandling::Kept or when every vertex passed).
   const std::vector<RepairMove> &repairMoves() const;
+  /// What the vertex repair left alone, each "vertex V: …" with the reason
+  /// (RepairResult::skipped: a crease fan needing a turn above 16°, a curve
+  /// passing through the vertex, …); empty as repairMoves() is.
+  const std::vector<std::string> &repairSkipped() const;
   /// The origin of the patches' internal frame in world coordinates: zero,
   /// except for a network whose bounding-box centre lies more than 4
   /// diagonals from the origin (e.g. a part placed at 1e6 in a large

@@ -434,16 +434,28 @@ Result<ShapeReport> Model::shape(const ShapeOptions &options) const {
   });
 }
 
+std::vector<const Surface *> Model::groupSurfaces() const {
+  std::vector<const Surface *> seen;
+  for (int f = 0; f < faceCount(); ++f)
+    if (const Surface *owner = surface(f); std::find(seen.begin(), seen.end(), owner) == seen.end())
+      seen.push_back(owner);
+  return seen;
+}
+
 std::vector<RepairMove> Model::repairMoves() const {
   std::vector<RepairMove> moves;
-  std::vector<const Surface *> seen;
-  for (int f = 0; f < faceCount(); ++f) {
-    const Surface *owner = surface(f);
-    if (std::find(seen.begin(), seen.end(), owner) != seen.end()) continue;
-    seen.push_back(owner);
+  for (const Surface *owner : groupSurfaces())
     moves.insert(moves.end(), owner->repairMoves().begin(), owner->repairMoves().end());
-  }
   return moves;
+}
+
+std::vector<std::string> Model::repairSkipped() const {
+  // Groups of different schemes repair the same vertices: a reason once.
+  std::vector<std::string> skipped;
+  for (const Surface *owner : groupSurfaces())
+    for (const std::string &reason : owner->repairSkipped())
+      if (std::find(skipped.begin(), skipped.end(), reason) == skipped.end()) skipped.push_back(reason);
+  return skipped;
 }
 
 Status Model::setFaceOptions(int face, const SurfaceOptions &options) {

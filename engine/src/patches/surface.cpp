@@ -726,14 +726,17 @@ std::vector<int> facesOf(const Network &network, std::span<const int> segments) 
 Surface Surface::build(const Network &network, const SurfaceOptions &options) {
   // Vertex repair (curvenet/analysis.hpp) is the stage before all others:
   // the surface is built on, and reports, the repaired network.
+  // Fans the repair left alone are reported even when nothing moved.
   if (options.curves == CurveHandling::Repaired)
-    if (RepairResult repair = repairNetwork(network, repairOptionsFor(options.scheme)); repair.changed()) {
+    if (RepairResult repair = repairNetwork(network, repairOptionsFor(options.scheme));
+        repair.changed() || !repair.skipped.empty()) {
       SurfaceOptions kept = options;
       kept.curves = CurveHandling::Kept;
-      Surface surface = build(Network::build(repair.network, network.name()), kept);
+      Surface surface = build(repair.changed() ? Network::build(repair.network, network.name()) : network, kept);
       const auto impl = std::const_pointer_cast<Impl>(surface.impl_); // not shared yet
       impl->options.curves = CurveHandling::Repaired;
       impl->repairMoves = std::move(repair.moves);
+      impl->repairSkipped = std::move(repair.skipped);
       return surface;
     }
   // A model far from the origin is built translated to its bounding-box
@@ -809,12 +812,17 @@ SurfaceEdit Surface::rebuildAfterEdit(const Network &edited) const {
   // The vertex repair first, as in build: the repaired edit differs from this
   // surface's (repaired) network near the edit only, so the rebuild below
   // stays partial; repairing it again changes nothing.
-  if (old.options.curves == CurveHandling::Repaired)
-    if (RepairResult repair = repairNetwork(edited, repairOptionsFor(old.options.scheme)); repair.changed()) {
+  RepairResult repair;
+  if (old.options.curves == CurveHandling::Repaired) {
+    repair = repairNetwork(edited, repairOptionsFor(old.options.scheme));
+    if (repair.changed()) {
       SurfaceEdit result = rebuildAfterEdit(Network::build(repair.network, edited.name()));
-      std::const_pointer_cast<Impl>(result.surface.impl_)->repairMoves = std::move(repair.moves); // not shared yet
+      const auto impl = std::const_pointer_cast<Impl>(result.surface.impl_); // not shared yet
+      impl->repairMoves = std::move(repair.moves);
+      impl->repairSkipped = std::move(repair.skipped);
       return result;
     }
+  }
   // Kept G¹ master faces: a full build (their fences and patches come from
   // the G¹ surface, which an edit rebuilds in part by itself).
   const bool partial = !old.bezier && old.keptG1.empty() && old.origin == Vec3{} && !needsOriginShift(edited) &&
@@ -834,6 +842,7 @@ SurfaceEdit Surface::rebuildAfterEdit(const Network &edited) const {
 
   auto impl = std::make_shared<Impl>(old);
   impl->repairMoves.clear(); // the caller (above) sets the moves of this edit's repair
+  impl->repairSkipped = std::move(repair.skipped);
   impl->network = edited;
   // The frames and curvatures of the changed segments' end vertices (every
   // curve at a vertex enters its tangent plane and curvature fit); then the
@@ -876,6 +885,7 @@ SurfaceEdit Surface::rebuildAfterEdit(const Network &edited) const {
 
 const Network &Surface::network() const { return impl_->network; }
 const std::vector<RepairMove> &Surface::repairMoves() const { return impl_->repairMoves; }
+const std::vector<std::string> &Surface::repairSkipped() const { return impl_->repairSkipped; }
 Vec3 Surface::origin() const { return impl_->origin; }
 const std::vector<int> &Surface::foldedFaces() const { return impl_->folded; }
 const SurfaceOptions &Surface::options() const { return impl_->options; }

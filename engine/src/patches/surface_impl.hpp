@@ -48,6 +48,7 @@ struct Surface::Impl {
   /// bezier-g1 / coons-c0: the quintic patches (the transfinite members stay empty).
   std::shared_ptr<const bezier::BezierSurfaceData> bezier;
   std::vector<RepairMove> repairMoves; ///< SurfaceOptions::curves: the vertex repair made
+  std::vector<std::string> repairSkipped; ///< RepairResult::skipped of that repair
 };
 
 /// The regular 4-sided domain of the bezier-g1 and coons-c0 faces, whose
