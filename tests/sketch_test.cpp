@@ -336,6 +336,49 @@ TEST(Sketch, RepairNamesTheFansItLeavesAlone) {
   EXPECT_EQ(nlohmann::json::parse(check.out)["repair"]["skipped"], nlohmann::json::array({reason}));
 }
 
+// A crease vertex as the public doghead sketch has one: three crease curves
+// and one G¹ curve between two of them, which leaves the plane of those two
+// by 18.7°, more than a turn the repair makes. The two crease curves have a
+// lone face corner on their other sides (no other fan's plane holds them),
+// so they turn too, into the least-squares plane of the fan's three curves,
+// and the fan becomes exactly G¹ with turns of a third of that.
+TEST(Sketch, AFanTooFarFromItsCreasePlaneTurnsTheCreaseCurvesThatAreFree) {
+  // Spokes in their order round the vertex: crease, G¹, crease, crease.
+  const Vec3 tangent[4] = {normalized(Vec3{0.9426, -0.2930, 0.1599}), normalized(Vec3{0.003, 0.68, -0.735}),
+                           normalized(Vec3{-0.8934, -0.3950, 0.2140}), normalized(Vec3{0.0034, 0.5274, 0.8496})};
+  const Vec3 across = normalized(cross(tangent[0], tangent[2]));
+  ASSERT_GT(std::asin(std::abs(dot(tangent[1], across))), 18 * kPi / 180);
+  NetworkDescription star;
+  auto line = [](Vec3 a, Vec3 b) { return BSplineCurve::bezier({a, a + (b - a) / 3, a + (b - a) * (2.0 / 3), b}); };
+  for (const Vec3 &t : tangent) star.curves.push_back(line({0, 0, 0}, t * 0.5)); // spokes 0–3
+  for (int k = 0; k < 4; ++k) star.curves.push_back(line(tangent[k] * 0.5, tangent[(k + 1) % 4] * 0.5)); // rims 4–7
+  for (int k = 0; k < 4; ++k) star.faces.push_back({{{k, 0, 1}, {4 + k, 0, 1}, {(k + 1) % 4, 1, 0}}});
+  const Network network = Network::build(star, "crease-star");
+  SurfaceOptions kept;
+  kept.curves = CurveHandling::Kept;
+  const Surface asGiven = Surface::build(network, kept);
+  int centre = -1;
+  for (int v = 0; v < static_cast<int>(network.vertices().size()); ++v)
+    if (norm(network.vertices()[v].position) < 1e-12) centre = v;
+  ASSERT_GE(centre, 0);
+  ASSERT_TRUE(asGiven.isCreaseVertex(centre));
+  std::map<int, bool> creaseByCurve;
+  for (int e : network.vertices()[centre].segments) creaseByCurve[network.segments()[e].sourceCurve] = asGiven.isCreaseSegment(e);
+  ASSERT_EQ(creaseByCurve, (std::map<int, bool>{{0, true}, {1, false}, {2, true}, {3, true}}));
+  EXPECT_GT(measureContinuity(asGiven, {8}).maxNormalAngleDeg, 5.0);
+
+  const Surface surface = Surface::build(network, {Scheme::GregoryG1});
+  EXPECT_TRUE(surface.repairSkipped().empty());
+  std::set<int> turned;
+  double largest = 0;
+  for (const RepairMove &m : surface.repairMoves())
+    if (m.vertex == centre && m.kind == RepairKind::TangentPlane) turned.insert(m.curve), largest = std::max(largest, m.angle);
+  EXPECT_EQ(turned, (std::set<int>{0, 1, 2})); // the fan's curves; spoke 3 bounds lone corners only
+  EXPECT_LT(largest, 10 * kPi / 180);
+  EXPECT_LE(measureContinuity(surface, {8}).maxNormalAngleDeg, 1e-6);
+  EXPECT_TRUE(surface.foldedFaces().empty());
+}
+
 TEST(Sketch, GreatCirclesGiveTheOctahedralNetworkWithSharedOrCrossingSamples) {
   for (bool shared : {true, false}) {
     SCOPED_TRACE(shared ? "shared points" : "crossing strokes");

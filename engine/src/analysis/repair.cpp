@@ -1,10 +1,13 @@
 // Vertex repair (curvenet/analysis.hpp): end tangents turned into the fitted
 // tangent plane, then the curvatures tweaked, at the vertices that fail them.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <numbers>
 #include <optional>
+
+#include <Eigen/Eigenvalues>
 
 #include "analysis/editable_curve.hpp"
 #include "analysis/vertex_frames.hpp"
@@ -141,6 +144,82 @@ std::vector<std::array<int, 2>> cornersAt(const Network &network, int v) {
   return corners;
 }
 
+/// The unit normal of the plane that holds `line` and, among the planes
+/// through it, spreads the `others` most (their least-squares plane about
+/// that line).
+Vec3 planeThroughLine(const Vec3 &line, const std::vector<Vec3> &others) {
+  const Vec3 e1 = normalized(cross(line, std::abs(line.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
+  const Vec3 e2 = cross(line, e1);
+  double xx = 0, xy = 0, yy = 0;
+  for (const Vec3 &t : others) {
+    const double x = dot(t, e1), y = dot(t, e2);
+    xx += x * x, xy += x * y, yy += y * y;
+  }
+  // The direction (in the e1, e2 plane) of largest spread; the normal is
+  // normal to it and the line.
+  const double phi = 0.5 * std::atan2(2 * xy, xx - yy);
+  return normalized(cross(line, e1 * std::cos(phi) + e2 * std::sin(phi)));
+}
+
+/// The unit normal of the least-squares plane through the origin of unit
+/// directions: the eigenvector of Σ t tᵀ of the smallest eigenvalue.
+Vec3 leastSquaresPlane(const std::vector<Vec3> &directions) {
+  Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+  for (const Vec3 &t : directions) {
+    const Eigen::Vector3d c{t.x, t.y, t.z};
+    m += c * c.transpose();
+  }
+  const Eigen::Vector3d n = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m).eigenvectors().col(0);
+  return normalized(Vec3{n.x(), n.y(), n.z()});
+}
+
+/// Turns a fan's G¹ curves (`inner`) into one plane with its two bounding
+/// crease curves, a and b: the plane of a and b where that takes at most
+/// kMaxCreaseTurn (where they run nearly straight through, the plane holding
+/// that line and the inner curves' spread). Where it would take more and a
+/// bound may turn (`free`: no other fan's plane holds it), the bounds that
+/// may turn join the fit: with both, the least-squares plane of all the
+/// fan's curves; with one, the plane through the other bound that fits the
+/// rest. The turns go into byCurve; returns why the fan is left alone, or
+/// "" when it is not.
+std::string turnFan(const VertexAnalysis &va, const CurveEnd &a, const CurveEnd &b,
+                    const std::vector<const CurveEnd *> &inner, std::array<bool, 2> free, double tolerance,
+                    std::map<int, std::vector<EndTurn>> &byCurve) {
+  std::vector<Vec3> innerTangents;
+  for (const CurveEnd *end : inner) innerTangents.push_back(end->tangent);
+  // The turns into the plane of normal n, or why not.
+  std::vector<std::pair<int, EndTurn>> turns;
+  auto turnsInto = [&](const Vec3 &n, std::array<bool, 2> turnBounds) -> std::string {
+    turns.clear();
+    std::vector<const CurveEnd *> ends = inner;
+    if (turnBounds[0]) ends.push_back(&a);
+    if (turnBounds[1]) ends.push_back(&b);
+    for (const CurveEnd *end : ends) {
+      if (std::abs(dot(end->tangent, n)) <= std::sin(tolerance)) continue;
+      for (const CurveEnd &other : va.ends)
+        if (&other != end && other.sourceCurve == end->sourceCurve && other.sourceParameter == end->sourceParameter)
+          return "curve " + std::to_string(end->sourceCurve) + " passes through the vertex";
+      turns.emplace_back(end->sourceCurve, turnInto(va, *end, n));
+      if (angleBetween(end->tangent, turns.back().second.to) > kMaxCreaseTurn) return "needs a turn of more than 16°";
+    }
+    return "";
+  };
+  const Vec3 across = cross(a.tangent, b.tangent);
+  const Vec3 exact = norm(across) < std::sin(kMaxCreaseTurn) ? planeThroughLine(normalized(a.tangent - b.tangent), innerTangents)
+                                                             : normalized(across);
+  std::string refusal = turnsInto(exact, {false, false});
+  if (refusal == "needs a turn of more than 16°" && (free[0] || free[1])) {
+    std::vector<Vec3> all = innerTangents;
+    if (free[0]) all.push_back(a.tangent);
+    if (free[1]) all.push_back(b.tangent);
+    const Vec3 n = free[0] && free[1] ? leastSquaresPlane(all) : planeThroughLine(free[0] ? b.tangent : a.tangent, all);
+    refusal = turnsInto(n, free);
+  }
+  if (!refusal.empty()) return refusal;
+  for (const auto &[curve, turn] : turns) byCurve[curve].push_back(turn);
+  return "";
+}
+
 /// Step 1 at a crease vertex. The faces around it fall into fans: maximal
 /// runs of corners joined by G¹ segments, each bounded by two crease (or
 /// boundary) segments. A crease curve lies on both sheets it separates, so
@@ -149,9 +228,11 @@ std::vector<std::array<int, 2>> cornersAt(const Network &network, int v) {
 /// plane, and the fences of its G¹ segments (the mean of the two corner
 /// planes, fenceEndNormal) agree with both patches. A crease vertex with no
 /// crease segment is a smooth vertex drawn badly: its tangents are turned
-/// into their fitted plane as at any vertex. Turns above kMaxCreaseTurn, a
-/// fan with other than two bounds, bounds nearly collinear, or a G¹ curve
-/// passing through the vertex leave the fan alone, named in `skipped`.
+/// into their fitted plane as at any vertex. A fan whose bounds' plane would
+/// take a turn above kMaxCreaseTurn turns the bounds that no other fan holds
+/// along with its G¹ curves (turnFan); still above it, a fan with other than
+/// two bounds, or a G¹ curve passing through the vertex leave the fan alone,
+/// named in `skipped`.
 void turnCreaseFans(const Network &network, const std::vector<VertexFrame> &frames, const VertexAnalysis &va,
                     double tolerance, std::map<int, std::vector<EndTurn>> &byCurve, std::vector<std::string> &skipped) {
   const int v = va.vertex;
@@ -193,60 +274,48 @@ void turnCreaseFans(const Network &network, const std::vector<VertexFrame> &fram
   std::map<int, std::vector<int>> fans; // root → segments (bounds once, G¹ segments twice)
   for (std::size_t i = 0; i < corners.size(); ++i)
     for (int s : corners[i]) fans[root(int(i))].push_back(s);
-  for (auto &[r, segs] : fans) {
+  struct Fan {
     std::vector<int> bounds, inner;
+  };
+  std::vector<Fan> split;
+  for (auto &[r, segs] : fans) {
+    Fan fan;
     for (int s : segs) {
       if (!endOf.count(s)) continue;
-      if (!smooth(s)) bounds.push_back(s);
-      else if (std::find(inner.begin(), inner.end(), s) == inner.end()) inner.push_back(s);
+      if (!smooth(s)) fan.bounds.push_back(s);
+      else if (std::find(fan.inner.begin(), fan.inner.end(), s) == fan.inner.end()) fan.inner.push_back(s);
     }
-    if (inner.empty()) continue;
+    split.push_back(std::move(fan));
+  }
+  // A crease curve may turn with a fan when no other fan's plane holds it:
+  // on its other side lies a lone face corner (a fan without G¹ curves), and
+  // the curve ends here (turning a curve passing through turns both halves).
+  auto mayTurn = [&](int bound, const Fan &own) {
+    const CurveEnd &end = *endOf[bound];
+    if (network.segments()[bound].isBoundary()) return false;
+    for (const CurveEnd &other : va.ends)
+      if (&other != &end && other.sourceCurve == end.sourceCurve && other.sourceParameter == end.sourceParameter)
+        return false;
+    for (const Fan &fan : split)
+      if (&fan != &own && !fan.inner.empty() &&
+          std::find(fan.bounds.begin(), fan.bounds.end(), bound) != fan.bounds.end())
+        return false;
+    return true;
+  };
+  for (const Fan &fan : split) {
+    if (fan.inner.empty()) continue;
     std::string curves;
-    for (int s : inner) curves += (curves.empty() ? "" : ", ") + std::to_string(endOf[s]->sourceCurve);
-    const std::string fan = where + "fan of curves " + curves + ": ";
-    if (bounds.size() != 2) {
-      skipped.push_back(fan + std::to_string(bounds.size()) + " crease or boundary curves bound it, not 2");
+    for (int s : fan.inner) curves += (curves.empty() ? "" : ", ") + std::to_string(endOf[s]->sourceCurve);
+    const std::string named = where + "fan of curves " + curves + ": ";
+    if (fan.bounds.size() != 2) {
+      skipped.push_back(named + std::to_string(fan.bounds.size()) + " crease or boundary curves bound it, not 2");
       continue;
     }
-    const Vec3 t1 = endOf[bounds[0]]->tangent, t2 = endOf[bounds[1]]->tangent;
-    Vec3 n = cross(t1, t2);
-    if (norm(n) < std::sin(kMaxCreaseTurn)) {
-      // A crease line running (nearly) straight through: the plane holds its
-      // direction and the G¹ curves' mean direction across it (their
-      // least-squares plane about that line).
-      const Vec3 line = normalized(t1 - t2);
-      double xx = 0, xy = 0, yy = 0;
-      const Vec3 e1 = normalized(cross(line, std::abs(line.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
-      const Vec3 e2 = cross(line, e1);
-      for (int s : inner) {
-        const double x = dot(endOf[s]->tangent, e1), y = dot(endOf[s]->tangent, e2);
-        xx += x * x, xy += x * y, yy += y * y;
-      }
-      // The direction (in the e1, e2 plane) of largest spread; n is normal to it and the line.
-      const double phi = 0.5 * std::atan2(2 * xy, xx - yy);
-      n = cross(line, e1 * std::cos(phi) + e2 * std::sin(phi));
-    }
-    n = normalized(n);
-    std::vector<std::pair<int, EndTurn>> turns;
-    bool refused = false;
-    for (int s : inner) {
-      const CurveEnd &end = *endOf[s];
-      if (std::abs(dot(end.tangent, n)) <= std::sin(tolerance)) continue;
-      for (const CurveEnd &other : va.ends)
-        if (&other != &end && other.sourceCurve == end.sourceCurve && other.sourceParameter == end.sourceParameter) {
-          skipped.push_back(fan + "curve " + std::to_string(end.sourceCurve) + " passes through the vertex");
-          refused = true;
-        }
-      if (refused) break;
-      turns.emplace_back(end.sourceCurve, turnInto(va, end, n));
-      if (angleBetween(end.tangent, turns.back().second.to) > kMaxCreaseTurn) {
-        skipped.push_back(fan + "needs a turn of more than 16°");
-        refused = true;
-        break;
-      }
-    }
-    if (refused) continue;
-    for (const auto &[curve, turn] : turns) byCurve[curve].push_back(turn);
+    std::vector<const CurveEnd *> inner;
+    for (int s : fan.inner) inner.push_back(endOf[s]);
+    const std::string refusal = turnFan(va, *endOf[fan.bounds[0]], *endOf[fan.bounds[1]], inner,
+                                        {mayTurn(fan.bounds[0], fan), mayTurn(fan.bounds[1], fan)}, tolerance, byCurve);
+    if (!refusal.empty()) skipped.push_back(named + refusal);
   }
 }
 
