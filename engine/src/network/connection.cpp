@@ -499,9 +499,13 @@ public:
       if (tilt < bestTilt) bestTilt = tilt, best = sample;
     }
     if (best < 0) return wellShapedParts(loop);
-    // Arriving along the chord: see kMaxFoldTilt.
+    // Arriving along the chord (see kMaxFoldTilt): a tangent-plane normal
+    // across the chord, as near the target's own as can be.
     LoopPoint target = loopPointAt(loop, best, faceNormal);
-    target.normal = orthogonalTo(target.normal, normalized(target.point - corner));
+    const Vec3 chord = normalized(target.point - corner);
+    const Vec3 near = norm(cross(target.normal, chord)) > 1e-6 ? target.normal
+                      : norm(cross(target.out, chord)) > norm(cross(target.in, chord)) ? target.out : target.in;
+    target.normal = orthogonalTo(near, chord);
     const int curve = static_cast<int>(curves_.size());
     curves_.push_back(connectionCurve(foldEnd(curves_, loop, i, target.point), target, reference_));
     connections_.push_back(curve);
