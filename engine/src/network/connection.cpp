@@ -183,7 +183,7 @@ double newCornerClearance(const LoopPoint &a, const LoopPoint &b) {
 // near, and the fold does not cross the face (it is left as it is). At that
 // end the cut takes its chord for tangent: the plane of the loop's curves
 // there holds one layer only (iron: the foot of the handle, whose curves'
-// plane lies 21° off the chord); turned into that plane, both parts folded
+// plane lies 17° off the chord); turned into that plane, both parts folded
 // under every scheme, along the chord none does.
 constexpr double kMaxFoldTilt = std::numbers::pi / 3;
 
@@ -860,8 +860,8 @@ NetworkDescription insertConnectionCurves(const NetworkDescription &description,
   for (const BSplineCurve &c : description.curves)
     for (const Vec3 &p : c.controlPoints()) bounds.add(p);
   const double tolerance = description.tolerance * bounds.diagonal();
-  // Before any split: a split description read back has no pleat left, its
-  // cuts end at the pleated corners, which makes them valence 3.
+  // Before any split: in a split description read back the cuts end at the
+  // pleated corners, which are then of valence 3 or more, no pleat.
   const std::vector<std::vector<int>> pleated = pleatedCorners(description.curves, description.faces, tolerance);
   std::vector<std::vector<int>> partsOf(description.faces.size());
   bool changed = false;
