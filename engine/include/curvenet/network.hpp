@@ -142,7 +142,8 @@ struct NetworkDescription {
 /// planes at its ends (the plane of the two loop tangents at a corner; at a
 /// side midpoint, the side tangent and the average of the side's corner
 /// normals), so the ends are ordinary T- or Y-vertices of the split network;
-/// a fold's cut leaves and arrives as said above, its ends crease vertices.
+/// a fold's cut leaves and arrives as said above (leaving the plane of the
+/// pleated corner's curves, it makes a crease vertex there).
 /// The result lists the sub-faces of each user face consecutively, each with
 /// `partOf` = the user face's index, so a composite face's patches — and
 /// its triangles in a tessellated mesh (Mesh::faceTriangleStart) — form one

@@ -179,8 +179,9 @@ double newCornerClearance(const LoopPoint &a, const LoopPoint &b) {
 // face. A corner turning by less than kConcaveMargin is left alone: there
 // a face may be convex on both sides within the margin.
 // The cut ends on the loop point whose chord from the pleated corner is
-// nearest the fold's direction, within this angle (radians); none that
-// near, and the fold does not cross the face (it is left as it is). At that
+// nearest the fold's direction, within this angle (radians; iron's are
+// 5–6° off): a chord farther off runs more along the corner's plane than
+// across it, and the loop is split as any other. At that
 // end the cut takes its chord for tangent: the plane of the loop's curves
 // there holds one layer only (iron: the foot of the handle, whose curves'
 // plane lies 17° off the chord); turned into that plane, both parts folded
@@ -237,7 +238,9 @@ std::vector<std::vector<int>> pleatedCorners(const std::vector<BSplineCurve> &cu
     const int n = static_cast<int>(loop.size());
     for (int k = 0; k < n; ++k) {
       const SidePoint prev = sidePoint(curves, loop[(k + n - 1) % n], 1.0), next = sidePoint(curves, loop[k], 0.0);
-      const bool turns = angleBetween(next.tangent, -prev.tangent) < std::numbers::pi - kConcaveMargin;
+      // A corner with a plane (as cornerPoint takes it) that turns by more than the margin.
+      const bool turns = norm(cross(next.tangent, -prev.tangent)) > 1e-3 &&
+                         angleBetween(next.tangent, -prev.tangent) < std::numbers::pi - kConcaveMargin;
       const bool convex = !cornerPoint(curves, loop, k, faceNormal, std::nullopt).concave;
       corners.push_back({f, k, next.point, loop[(k + n - 1) % n], loop[k], turns && convex});
     }
@@ -495,7 +498,9 @@ public:
       const int ahead = (sample / kSamplesPerSide - i + n) % n;
       const bool mid = sample % kSamplesPerSide != 0;
       if (mid ? (ahead == 0 || ahead == n - 1) : (ahead < 2 || ahead > n - 2)) continue;
-      const double tilt = foldTilt(curves_, loop, i, loopPointAt(loop, sample, faceNormal).point);
+      const Vec3 end = loopPointAt(loop, sample, faceNormal).point;
+      if (!(norm(end - corner) > 0)) continue;
+      const double tilt = foldTilt(curves_, loop, i, end);
       if (tilt < bestTilt) bestTilt = tilt, best = sample;
     }
     if (best < 0) return wellShapedParts(loop);
