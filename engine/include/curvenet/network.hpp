@@ -123,6 +123,12 @@ struct NetworkDescription {
 ///    loop vertex or side midpoint that splits it best — the one whose four
 ///    new corner angles stay farthest from 0 and from a straight angle;
 ///    parts that are still concave are split again;
+///  * a pleated corner (at a vertex of valence 2, turning by more than
+///    0.2 rad and convex in both faces' loops, which on a smooth sheet one
+///    of them could not be: the sheet leaves the corner across the plane of
+///    its two curves and folds back) is cut along the fold, the normal of
+///    that plane, to the loop vertex or side midpoint whose chord is
+///    nearest it (within 60°); the cut arrives along its chord;
 ///  * a hole is joined to the outer loop by one curve per corner, each
 ///    outer corner to the hole corner it pairs with, which makes n
 ///    four-sided faces. When the two loops have different side counts, the
@@ -135,7 +141,9 @@ struct NetworkDescription {
 /// Each connection curve is a cubic whose end tangents lie in the tangent
 /// planes at its ends (the plane of the two loop tangents at a corner; at a
 /// side midpoint, the side tangent and the average of the side's corner
-/// normals), so the ends are ordinary T- or Y-vertices of the split network.
+/// normals), so the ends are ordinary T- or Y-vertices of the split network;
+/// a fold's cut leaves and arrives as said above (leaving the plane of the
+/// pleated corner's curves, it makes a crease vertex there).
 /// The result lists the sub-faces of each user face consecutively, each with
 /// `partOf` = the user face's index, so a composite face's patches — and
 /// its triangles in a tessellated mesh (Mesh::faceTriangleStart) — form one

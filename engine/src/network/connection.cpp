@@ -166,6 +166,108 @@ double newCornerClearance(const LoopPoint &a, const LoopPoint &b) {
   return clearance;
 }
 
+// Pleats. At a vertex of valence 2 the two faces share the corner's two
+// curves, and on a smooth sheet their angles there add up to a full turn:
+// where the curves turn, one face is convex and the other concave (and the
+// concave one is split above). When both are convex, each by its own loop,
+// the sheet is pleated: it leaves the corner on both faces across the plane
+// of the two curves and folds back from one curve's layer to the other's
+// (iron.obj's handle meets the body at a 57° V drawn by one stroke, the
+// valley behind it not drawn: both faces beside the V are hexagons that
+// rise to a spike where they meet). No n-gon maps onto such a loop without
+// turning its normal over; cut along the fold, each part is an ordinary
+// face. A corner turning by less than kConcaveMargin is left alone: there
+// a face may be convex on both sides within the margin.
+// The cut ends on the loop point whose chord from the pleated corner is
+// nearest the fold's direction, within this angle (radians; iron's are
+// 5–6° off): a chord farther off runs more along the corner's plane than
+// across it, and the loop is split as any other. At that
+// end the cut takes its chord for tangent: the plane of the loop's curves
+// there holds one layer only (iron: the foot of the handle, whose curves'
+// plane lies 17° off the chord); turned into that plane, both parts folded
+// under every scheme, along the chord none does.
+constexpr double kMaxFoldTilt = std::numbers::pi / 3;
+
+/// The normal of the plane of corner k's two curves, turned toward `other`.
+Vec3 foldDirection(const std::vector<BSplineCurve> &curves, const Loop &loop, int k, const Vec3 &other) {
+  const int n = static_cast<int>(loop.size());
+  const SidePoint prev = sidePoint(curves, loop[(k + n - 1) % n], 1.0), next = sidePoint(curves, loop[k], 0.0);
+  const Vec3 fold = normalized(cross(next.tangent, -prev.tangent));
+  return dot(fold, other - next.point) < 0 ? -fold : fold;
+}
+
+/// Angle between the fold at corner k and the chord from there to `other`.
+double foldTilt(const std::vector<BSplineCurve> &curves, const Loop &loop, int k, const Vec3 &other) {
+  return angleBetween(foldDirection(curves, loop, k, other), other - sidePoint(curves, loop[k], 0).point);
+}
+
+/// The end of a cut along the fold at corner k toward `other`: the corner
+/// with a tangent-plane normal whose plane holds the fold and the chord,
+/// so connectionCurve leaves the corner along the fold.
+LoopPoint foldEnd(const std::vector<BSplineCurve> &curves, const Loop &loop, int k, const Vec3 &other) {
+  const int n = static_cast<int>(loop.size());
+  const SidePoint prev = sidePoint(curves, loop[(k + n - 1) % n], 1.0), next = sidePoint(curves, loop[k], 0.0);
+  const Vec3 fold = foldDirection(curves, loop, k, other), chord = other - next.point;
+  const Vec3 across = chord - fold * dot(fold, chord);
+  // A chord along the fold: any plane through the fold will do.
+  const Vec3 normal = norm(across) > 1e-9 * norm(chord) ? normalized(across) : orthogonalTo(next.tangent, fold);
+  return LoopPoint{next.point, prev.tangent, next.tangent, normal};
+}
+
+bool loopIsValid(const std::vector<BSplineCurve> &curves, const Loop &loop);
+
+/// For each face, the corners where its sheet is pleated (see above): a
+/// corner at a vertex only it and one other face touch, the two loops
+/// running along the same two curve pieces there in opposite directions,
+/// turning by more than kConcaveMargin, and convex in both loops. Faces
+/// with holes or invalid loops have none.
+std::vector<std::vector<int>> pleatedCorners(const std::vector<BSplineCurve> &curves,
+                                             const std::vector<FaceDescription> &faces, double tolerance) {
+  struct Corner {
+    int face, k;
+    Vec3 point;
+    SideDescription in, out; // the sides arriving at and leaving the corner
+    bool pleatable;          // turns by more than the margin and is convex in its loop
+  };
+  std::vector<Corner> corners;
+  for (int f = 0; f < static_cast<int>(faces.size()); ++f) {
+    const Loop &loop = faces[f].sides;
+    if (!faces[f].holes.empty() || loop.size() < 3 || !loopIsValid(curves, loop)) continue;
+    const Vec3 faceNormal = newellNormal(curves, loop);
+    if (!(norm(faceNormal) > 0)) continue;
+    const int n = static_cast<int>(loop.size());
+    for (int k = 0; k < n; ++k) {
+      const SidePoint prev = sidePoint(curves, loop[(k + n - 1) % n], 1.0), next = sidePoint(curves, loop[k], 0.0);
+      // A corner with a plane (as cornerPoint takes it) that turns by more than the margin.
+      const bool turns = norm(cross(next.tangent, -prev.tangent)) > 1e-3 &&
+                         angleBetween(next.tangent, -prev.tangent) < std::numbers::pi - kConcaveMargin;
+      const bool convex = !cornerPoint(curves, loop, k, faceNormal, std::nullopt).concave;
+      corners.push_back({f, k, next.point, loop[(k + n - 1) % n], loop[k], turns && convex});
+    }
+  }
+  // Corners at one point, found along x (sorted) within the tolerance.
+  std::vector<int> order(corners.size());
+  for (size_t c = 0; c < order.size(); ++c) order[c] = static_cast<int>(c);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return corners[a].point.x < corners[b].point.x; });
+  std::vector<std::vector<int>> pleated(faces.size());
+  // The same curve piece run the other way: same curve, the far ends on the same side of the corner.
+  auto runsBack = [](const SideDescription &arriving, const SideDescription &leaving) {
+    return arriving.curve == leaving.curve && (arriving.from - arriving.to) * (leaving.to - leaving.from) > 0;
+  };
+  for (size_t a = 0; a < order.size(); ++a) {
+    std::vector<int> here;
+    for (size_t b = a; b-- > 0 && corners[order[a]].point.x - corners[order[b]].point.x <= tolerance;)
+      if (norm(corners[order[a]].point - corners[order[b]].point) <= tolerance) here.push_back(order[b]);
+    for (size_t b = a + 1; b < order.size() && corners[order[b]].point.x - corners[order[a]].point.x <= tolerance; ++b)
+      if (norm(corners[order[a]].point - corners[order[b]].point) <= tolerance) here.push_back(order[b]);
+    if (here.size() != 1) continue;
+    const Corner &mine = corners[order[a]], &theirs = corners[here[0]];
+    if (mine.face == theirs.face || !mine.pleatable || !theirs.pleatable) continue;
+    if (runsBack(mine.in, theirs.out) && runsBack(theirs.in, mine.out)) pleated[mine.face].push_back(mine.k);
+  }
+  return pleated;
+}
+
 // Uneven and many-sided loops. A transfinite patch maps the regular n-gon
 // onto its loop, side k of the domain onto side k of the loop, each
 // proportionally. When the loop's corners crowd on one part of it and leave
@@ -373,6 +475,51 @@ public:
     std::vector<Loop> parts;
     for (const Loop &convex : convexParts(loop))
       for (Loop &even : evenParts(convex)) parts.push_back(std::move(even));
+    return parts;
+  }
+
+  /// The loop cut along its fold from pleated corner i (see
+  /// pleatedCorners), each part then well shaped; the loop well shaped as
+  /// it is when no cut fits. The cut leaves the corner across the plane of
+  /// its two curves, on the side the face lies: a sheet folding over from
+  /// one curve's layer to the other's turns about that direction there, so
+  /// each part gets a corner between one layer's curve and the fold, close
+  /// to square (iron.obj: 90° on both parts, the loop's own corner 57°).
+  /// It ends on the loop corner or side midpoint nearest that direction as
+  /// seen from the corner, within kMaxFoldTilt, not on a side at the
+  /// corner, arriving along its chord.
+  std::vector<Loop> pleatParts(const Loop &loop, int i) {
+    const int n = static_cast<int>(loop.size());
+    const Vec3 faceNormal = newellNormal(curves_, loop);
+    const Vec3 corner = sidePoint(curves_, loop[i], 0).point;
+    int best = -1;
+    double bestTilt = kMaxFoldTilt;
+    for (int sample = 0; sample < n * kSamplesPerSide; sample += kSamplesPerSide / 2) {
+      const int ahead = (sample / kSamplesPerSide - i + n) % n;
+      const bool mid = sample % kSamplesPerSide != 0;
+      if (mid ? (ahead == 0 || ahead == n - 1) : (ahead < 2 || ahead > n - 2)) continue;
+      const Vec3 end = loopPointAt(loop, sample, faceNormal).point;
+      if (!(norm(end - corner) > 0)) continue;
+      const double tilt = foldTilt(curves_, loop, i, end);
+      if (tilt < bestTilt) bestTilt = tilt, best = sample;
+    }
+    if (best < 0) return wellShapedParts(loop);
+    // Arriving along the chord (see kMaxFoldTilt): a tangent-plane normal
+    // across the chord, as near the target's own as can be.
+    LoopPoint target = loopPointAt(loop, best, faceNormal);
+    const Vec3 chord = normalized(target.point - corner);
+    const Vec3 near = norm(cross(target.normal, chord)) > 1e-6 ? target.normal
+                      : norm(cross(target.out, chord)) > norm(cross(target.in, chord)) ? target.out : target.in;
+    target.normal = orthogonalTo(near, chord);
+    const int curve = static_cast<int>(curves_.size());
+    curves_.push_back(connectionCurve(foldEnd(curves_, loop, i, target.point), target, reference_));
+    connections_.push_back(curve);
+    const int from = i * kSamplesPerSide;
+    Loop first = sidesBetween(loop, from, best), second = sidesBetween(loop, best, from);
+    first.push_back({curve, 1.0, 0.0});
+    second.push_back({curve, 0.0, 1.0});
+    std::vector<Loop> parts = wellShapedParts(first);
+    for (Loop &l : wellShapedParts(second)) parts.push_back(std::move(l));
     return parts;
   }
 
@@ -718,6 +865,9 @@ NetworkDescription insertConnectionCurves(const NetworkDescription &description,
   for (const BSplineCurve &c : description.curves)
     for (const Vec3 &p : c.controlPoints()) bounds.add(p);
   const double tolerance = description.tolerance * bounds.diagonal();
+  // Before any split: in a split description read back the cuts end at the
+  // pleated corners, which are then of valence 3 or more, no pleat.
+  const std::vector<std::vector<int>> pleated = pleatedCorners(description.curves, description.faces, tolerance);
   std::vector<std::vector<int>> partsOf(description.faces.size());
   bool changed = false;
   for (size_t f = 0; f < description.faces.size(); ++f) {
@@ -748,7 +898,12 @@ NetworkDescription insertConnectionCurves(const NetworkDescription &description,
         requireClosed(description.curves, face.sides, tolerance, file, element);
       // A part of a split face (a split description read back) stays as it
       // was split; only a concave corner would still be split.
-      parts = face.partOf >= 0 ? splitter.convexParts(face.sides) : splitter.wellShapedParts(face.sides);
+      if (face.partOf >= 0)
+        parts = splitter.convexParts(face.sides);
+      else if (!pleated[f].empty())
+        parts = splitter.pleatParts(face.sides, pleated[f][0]);
+      else
+        parts = splitter.wellShapedParts(face.sides);
     } else {
       parts = {face.sides};
     }
