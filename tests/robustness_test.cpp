@@ -337,18 +337,22 @@ TEST(RobustnessCorpus, SharedSketches) {
   // hexagons meet at 180° along their shared curve, a pleat, and one of them
   // folds under gregory-g1 (faces that fold under eq. 17's corners take the
   // two-ribbon blend or shorter cross-derivatives, sewing_machine's L-shaped
-  // strips are split at a quarter point). gregory-g2 folds 3 faces (49
+  // strips are split at a quarter point). gregory-g2 folds 1 face (49
   // before the direct transversal curvature stopped taking up curvature
   // spikes of the curves, 10 before folded faces took shorter
-  // cross-derivatives too, see docs/surfaces.md, Folds): iron's face 32,
-  // which composite-ribbon and gregory-g1 fold too, and doghead's faces 7
-  // and 18, which fold with their linear ribbons alone (18 under
-  // composite-ribbon too). G¹ segments ending at a crease are exactly G¹
+  // cross-derivatives too, 3 before the weld stopped joining strokes that
+  // run into a junction they share, see docs/surfaces.md, Folds): iron's
+  // face 32, which composite-ribbon and gregory-g1 fold too. doghead's
+  // faces 7 and 18 folded under gregory-g2 (18 under composite-ribbon too)
+  // beside an X-node the weld had made one sample short of a junction;
+  // composite-ribbon still folds doghead's 7-sided face 1 (around the
+  // lower lid of an eye, a side dipping out of the face), on the 8-row
+  // fold grid only. G¹ segments ending at a crease are exactly G¹
   // (≤ 1.1e-8°; 6.5–7.7° before vertex repair turned each fan's G¹ curves
   // into the plane of its crease curves); iron's 180° is the edge between
   // its two folded faces.
   const std::map<std::string, std::array<Expectation, 3>> rows = {
-      {"doghead.obj", {{kGoal, {2, 1.05, 1e-4, 1e-6}, {2, 1.05, 1e-4, 1e-6}}}},
+      {"doghead.obj", {{kGoal, {1, 1.05, 1e-4, 1e-6}, kGoal}}},
       {"spherecylinder.obj", {{kGoal, kGoal, kGoal}}},
       {"sewing_machine.obj", {{kGoal, kGoal, kGoal}}},
       {"box.obj", {{kGoal, kGoal, kGoal}}},
