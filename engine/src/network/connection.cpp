@@ -202,13 +202,12 @@ double newCornerClearance(const LoopPoint &a, const LoopPoint &b) {
 // deviated 4.8% on the Fig. 9 10-gon against 1.2%). Equally even splits
 // are common (the worse part's longest and shortest pieces stay the same
 // whichever of several corners and midpoints the curve leaves from) and
-// take the one whose
-// larger part has the fewest sides: the order among them was the sort's,
-// so near-mirror loops were split differently (doghead.obj's user face 0
-// into a quad and a 7-gon, its mirror image 22 into two hexagons), and the
-// 7-gon folded under composite-ribbon. An uneven loop of at
-// most kMaxPartSides sides takes the split only if its worse part is more
-// even than the loop. The parts are split again in the same way (a 16-gon
+// take the one whose larger part has the fewest sides: the order among
+// them was the sort's, so near-mirror loops were split differently
+// (doghead.obj's user face 0 into a quad and a 7-gon, its mirror image 22
+// into two hexagons), and the 7-gon folded under composite-ribbon. An
+// uneven loop of at most kMaxPartSides sides takes the split only if its
+// worse part is more even than the loop. The parts are split again in the same way (a 16-gon
 // ends in four parts of 5 and 6 sides). Choosing by the domain map's
 // distortion instead (the worst σ₁/σ₂ over the fan triangles, affine part
 // taken out) measured worse on balance: over loops of 9–16 sides gregory-g1
