@@ -332,21 +332,23 @@ TEST(RobustnessCorpus, SharedSketches) {
   const std::filesystem::path dir = std::filesystem::path(CURVENET_SHARED_DATA_DIR) / "sketches";
   if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << dir << " is absent: no sketches to run";
   // Columns as in corpus(): gregory-g1, composite-ribbon, gregory-g2.
-  // Measured: gregory-g1 folds no face (faces that fold under eq. 17's
-  // corners take the two-ribbon blend or shorter cross-derivatives,
-  // sewing_machine's L-shaped strips are split at a quarter point, iron's
-  // two hexagons pleated over a V of its strokes are cut along the fold:
-  // they folded under every scheme, and met at 180° along their shared
-  // curves). gregory-g2 folds 2 faces (49 before the direct transversal
-  // curvature stopped taking up curvature spikes of the curves, 10 before
-  // folded faces took shorter cross-derivatives too, 3 before the pleat
-  // cuts, see docs/surfaces.md, Folds): doghead's faces 7 and 18, which fold
-  // with their linear ribbons alone (18 under composite-ribbon too). G¹
-  // segments ending at a crease are exactly G¹ (≤ 1.1e-8°; 6.5–7.7° before
-  // vertex repair turned each fan's G¹ curves into the plane of its crease
-  // curves).
+  // Measured: every sketch meets the goal under every scheme. What it
+  // took (docs/surfaces.md, Folds): faces that fold under eq. 17's corners
+  // take the two-ribbon blend or shorter cross-derivatives (gregory-g2: 49
+  // folded faces before the direct transversal curvature stopped taking up
+  // curvature spikes of the curves, 10 before folded faces took shorter
+  // cross-derivatives too); sewing_machine's L-shaped strips are split at a
+  // quarter point; iron's two hexagons pleated over a V of its strokes are
+  // cut along the fold (they folded under every scheme and met at 180°);
+  // doghead's faces 7 and 18 folded under gregory-g2 (18 under
+  // composite-ribbon too) beside an X-node the weld had made one sample
+  // short of a junction, and its 7-sided face 1 under composite-ribbon, a
+  // part of an 8-sided face that a tie among equally even splits cut into a
+  // quad and a 7-gon (its mirror image into two hexagons). G¹ segments
+  // ending at a crease are exactly G¹ (≤ 1.1e-8°; 6.5–7.7° before vertex
+  // repair turned each fan's G¹ curves into the plane of its crease curves).
   const std::map<std::string, std::array<Expectation, 3>> rows = {
-      {"doghead.obj", {{kGoal, {2, 1.05, 1e-4, 1e-6}, {2, 1.05, 1e-4, 1e-6}}}},
+      {"doghead.obj", {{kGoal, kGoal, kGoal}}},
       {"spherecylinder.obj", {{kGoal, kGoal, kGoal}}},
       {"sewing_machine.obj", {{kGoal, kGoal, kGoal}}},
       {"box.obj", {{kGoal, kGoal, kGoal}}},

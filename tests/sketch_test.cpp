@@ -491,6 +491,71 @@ TEST(Sketch, CornersOfStrokesSharingAPointAreNodesAndTheOpenSideOfASheetIsLeftOu
   EXPECT_EQ(folds(network, Scheme::GregoryG1), 0);
 }
 
+TEST(Sketch, StrokesEndingAtOneJunctionAtASmallAngleAreNotJoinedShortOfIt) {
+  // The domed square sheet with two strokes from its corner (-1, -1) to its
+  // right side, 20° apart (at 10° and 30° to the bottom side), sampled
+  // densely (spacing 0.3 weld distances): near the corner they stay within
+  // the weld distance of each other for several samples, as two strokes
+  // drawn into one junction do (doghead.obj's 20° junction). They meet at
+  // the corner only, not at an X one sample short of it.
+  CurveGraph g;
+  auto dome = [](double x, double y) { return Vec3{x, y, 0.1 * (2 - x * x - y * y)}; };
+  std::vector<int> outline;
+  const double corner[5][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {-1, -1}};
+  for (int side = 0; side < 4; ++side)
+    for (int k = 0; k < 30; ++k) {
+      const double t = k / 30.0;
+      outline.push_back(static_cast<int>(g.points.size()));
+      g.points.push_back(dome(corner[side][0] + (corner[side + 1][0] - corner[side][0]) * t,
+                              corner[side][1] + (corner[side + 1][1] - corner[side][1]) * t));
+    }
+  outline.push_back(outline.front());
+  g.strokes.push_back(outline);
+  const double gap = 1e-3;
+  for (const double degrees : {10.0, 30.0}) {
+    const double slope = std::tan(degrees * kPi / 180);
+    addStroke(g, 1500, [&](double t) {
+      const double x = -1 + (2 - gap) * t;
+      return dome(x, -1 + (x + 1) * slope);
+    });
+  }
+  const SketchResult r = networkFromCurveGraph(g);
+  // Three samples from the corner the strokes are still closer than the weld distance.
+  const double spacing = 2.0 / 1499;
+  ASSERT_LT(3 * spacing * 2 * std::sin(10 * kPi / 180), r.weldDistance);
+  std::multiset<NodeKind> kinds;
+  for (const SketchNode &n : r.nodes) kinds.insert(n.kind);
+  EXPECT_EQ(kinds.count(NodeKind::X), 0u);
+  EXPECT_EQ(kinds.count(NodeKind::T), 2u);
+  int atCorner = 0;
+  for (const SketchNode &n : r.nodes)
+    if (norm(n.position - dome(-1, -1)) < 1e-12) atCorner = n.valence;
+  EXPECT_EQ(atCorner, 4); // the outline's two sides and both strokes
+  // Two triangles (one with the 20° corner) and a quad; no edge of a sample's length.
+  EXPECT_EQ(r.facesBySides, (std::map<int, int>{{3, 2}, {4, 1}}));
+  const Network network = Network::build(r.description);
+  for (const Segment &seg : network.segments()) EXPECT_GT(seg.curve.arcLength(0, 1), 0.2);
+  EXPECT_EQ(folds(network, Scheme::GregoryG2), 0);
+
+  // A stroke that leaves another's end and comes back in a small loop (radius
+  // 5 weld distances) to cross it is still joined there: its path back to the
+  // shared end is a semicircle, not straight.
+  CurveGraph loop;
+  addStroke(loop, 400, [](double t) { return Vec3{2 * t, 0, 0}; });
+  const double radius = 0.015;
+  addStroke(loop, 80, [&](double t) {
+    const double phi = kPi - t * 7 * kPi / 6;
+    return Vec3{radius + radius * std::cos(phi), radius * std::sin(phi), 0};
+  });
+  const SketchResult looped = networkFromCurveGraph(loop);
+  // The way back along the loop is within the 20 weld distances the weld
+  // searches for a shared point, so the straightness is what decides.
+  ASSERT_LT(kPi * radius, 20 * looped.weldDistance);
+  std::multiset<NodeKind> crossed;
+  for (const SketchNode &n : looped.nodes) crossed.insert(n.kind);
+  EXPECT_EQ(crossed.count(NodeKind::X), 1u);
+}
+
 TEST(Sketch, LoneCyclesBesideOtherPartsAreNamedNotCapped) {
   // A tube drawn as its two rims, nothing along it: the region between them
   // is a cylinder, not two discs.

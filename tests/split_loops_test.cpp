@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -175,6 +176,50 @@ TEST(SplitLoops, ManySidedLoopsNeedConnectionCurves) {
     ADD_FAILURE() << "a 12-sided loop was built as one patch";
   } catch (const InputError &e) {
     EXPECT_EQ(e.element(), "face 0") << e.what();
+  }
+}
+
+// Uneven 8-gons with straight sides between corners on the bowl above the
+// ellipse x = 1.5 cos θ, y = sin θ, crowded on part of the turn: several
+// cuts give the worse part the same side ratio (its longest and shortest
+// pieces stay the same whichever of several points the cut leaves from).
+// The split takes the one whose larger part has the fewest sides, so each
+// loop is cut alike (4 + 5 + 5) from whichever corner its side list starts
+// and in either direction. The order among the ties used to be the sort's:
+// the first loop came out as 4 + 4 + 7 or 4 + 4 + 8, the second in six
+// different ways, by where the list started.
+TEST(SplitLoops, EquallyEvenCutsSplitALoopAlikeWhereverItsListStarts) {
+  const std::vector<std::vector<double>> loops = {{33.4, 186.5, 257.7, 280.2, 289.0, 298.5, 311.4, 338.1},
+                                                  {33.0, 36.8, 83.4, 84.1, 100.2, 103.9, 183.5, 348.4}};
+  auto line = [](Vec3 a, Vec3 b) { return BSplineCurve::bezier({a, a + (b - a) / 3.0, a + (b - a) * (2 / 3.0), b}); };
+  for (const std::vector<double> &degrees : loops) {
+    const int n = static_cast<int>(degrees.size());
+    std::vector<int> first;
+    for (const bool mirrored : {false, true})
+      for (int start = 0; start < n; ++start) {
+        SCOPED_TRACE("from corner " + std::to_string(start) + (mirrored ? ", mirrored" : ""));
+        std::vector<Vec3> corners;
+        for (double angle : degrees) {
+          const double x = 1.5 * std::cos(angle * std::numbers::pi / 180), y = std::sin(angle * std::numbers::pi / 180);
+          corners.push_back({x, mirrored ? -y : y, kBowlX * x * x + kBowlY * y * y});
+        }
+        if (mirrored) std::reverse(corners.begin(), corners.end()); // counter-clockwise again
+        std::rotate(corners.begin(), corners.begin() + start, corners.end());
+        NetworkDescription d;
+        FaceDescription face;
+        for (int k = 0; k < n; ++k) {
+          d.curves.push_back(line(corners[k], corners[(k + 1) % n]));
+          face.sides.push_back({k, 0, 1});
+        }
+        d.faces.push_back(face);
+        const Network network = Network::build(d);
+        std::vector<int> parts;
+        for (const Face &f : network.faces()) parts.push_back(f.sideCount());
+        std::sort(parts.begin(), parts.end());
+        EXPECT_GT(parts.size(), 1u) << "the loop is uneven";
+        if (first.empty()) first = parts;
+        EXPECT_EQ(parts, first);
+      }
   }
 }
 

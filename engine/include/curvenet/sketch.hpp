@@ -8,7 +8,9 @@
 //     point are joined to it; an end near the interior of another stroke's
 //     polyline splits it there (a T-node); two strokes passing within the
 //     weld distance of each other are joined at their closest points (an
-//     X-node). Points that coincide (1e-9 of the diagonal) are one point.
+//     X-node), unless they are that close only because they run into a
+//     point they share (strokes ending at one junction at a small angle).
+//     Points that coincide (1e-9 of the diagonal) are one point.
 //  2. nodes: every point where other than two polyline pieces meet, and
 //     every corner (a stroke turning by more than 75° over 2% of the
 //     diagonal on either side: strokes drawn to meet at a corner share a

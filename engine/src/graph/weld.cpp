@@ -15,6 +15,14 @@ inline namespace v1 {
 namespace graph {
 namespace {
 
+// joinCrossings: two strokes that reach a point they share along paths at
+// most this many times their straight distance to it run into that point,
+// and the search for such a point goes this many weld distances along the
+// strokes (strokes meeting at an angle of 3° or more stay within the weld
+// distance of each other only inside that reach).
+constexpr double kStraightPath = 1.2;
+constexpr double kConvergenceReach = 20;
+
 /// Points hashed into cubic cells, for neighbour queries within a radius.
 class PointGrid {
 public:
@@ -135,6 +143,60 @@ public:
     for (const auto &l : g_.links[start]) seen.insert(l.point);
     return seen;
   }
+  /// Path lengths along the strokes from the point at parameter s of piece
+  /// (a, b) to every point it reaches within `reach` (shortest paths). The
+  /// paths stop at crossings this pass has joined: two strokes crossing at a
+  /// shallow angle both run on nearly straight past their X, so beyond it
+  /// they would seem to run into a shared point; their other close pieces
+  /// are the shared-point test's in joinCrossings.
+  std::unordered_map<int, double> pathLengthsFrom(int a, int b, double s, double reach) const {
+    const double length = norm(g_.points[b] - g_.points[a]);
+    std::unordered_map<int, double> best;
+    using Entry = std::pair<double, int>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+    queue.push({s * length, a});
+    queue.push({(1 - s) * length, b});
+    while (!queue.empty()) {
+      const auto [d, p] = queue.top();
+      queue.pop();
+      if (best.count(p)) continue;
+      best[p] = d;
+      if (g_.madeAs[p] == NodeKind::X) continue;
+      for (const auto &l : g_.links[p]) {
+        const double next = d + norm(g_.points[l.point] - g_.points[p]);
+        if (next <= reach && !best.count(l.point)) queue.push({next, l.point});
+      }
+    }
+    return best;
+  }
+  /// True when pieces (a0, a1) and (b0, b1), closest at parameters s and t,
+  /// are near each other only because their strokes run into a point they
+  /// already share (drawn to meet there): both reach it along nearly
+  /// straight paths (no longer than kStraightPath times the straight
+  /// distance). Two strokes ending at one junction at an angle θ stay within
+  /// the weld distance w of each other for w / (2 sin(θ/2)) from it (2.9 w at
+  /// doghead.obj's 20° junction), beyond the 3 w of the shared-point test in
+  /// joinCrossings; joined there, they made an X-node one sample short of
+  /// the junction and a segment one sample long, into which the curve
+  /// through the X bent (normal curvature −19.7 there against −0.19 of the
+  /// curve 20° away), and the vertex fit turned that into a principal
+  /// curvature of −164 that twisted the gregory-g2 fences of both faces
+  /// beside it by more than half a turn. A stroke that comes back to cross
+  /// another near a point they share does so along a path that is not
+  /// straight (π/2 times its chord for a semicircle).
+  bool convergeIntoSharedPoint(int a0, int a1, double s, int b0, int b1, double t) const {
+    const Vec3 pa = g_.points[a0] + (g_.points[a1] - g_.points[a0]) * s;
+    const Vec3 pb = g_.points[b0] + (g_.points[b1] - g_.points[b0]) * t;
+    const double reach = kConvergenceReach * weld_;
+    const auto fromA = pathLengthsFrom(a0, a1, s, reach), fromB = pathLengthsFrom(b0, b1, t, reach);
+    for (const auto &[q, la] : fromA) {
+      const auto other = fromB.find(q);
+      if (other == fromB.end() || g_.madeAs[q] == NodeKind::X) continue;
+      const Vec3 &at = g_.points[q];
+      if (la <= kStraightPath * norm(at - pa) && other->second <= kStraightPath * norm(at - pb)) return true;
+    }
+    return false;
+  }
   std::vector<std::pair<int, int>> pieces() const {
     std::vector<std::pair<int, int>> out;
     for (int a = 0; a < static_cast<int>(g_.links.size()); ++a)
@@ -226,6 +288,7 @@ public:
       const auto own = nearAlongStrokes(a0, 3 * weld_ + norm(g_.points[a1] - g_.points[a0]));
       if (own.count(b0) || own.count(b1)) continue;
       used[c.first] = used[c.second] = true;
+      if (convergeIntoSharedPoint(a0, a1, c.s, b0, b1, c.t)) continue;
       const int pa = split(a0, a1, c.s, NodeKind::X);
       const int pb = split(b0, b1, c.t, NodeKind::X);
       if (pa == pb) continue;

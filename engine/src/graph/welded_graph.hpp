@@ -27,7 +27,8 @@ struct WeldedGraph {
 
 /// Merges coincident points, joins free stroke ends within `weld` (absolute)
 /// to a nearby point or polyline piece (T-nodes), and joins pieces of
-/// different strokes passing within `weld` of each other (X-nodes).
+/// different strokes passing within `weld` of each other (X-nodes) unless
+/// they only run into a point they share.
 WeldedGraph weldCurveGraph(const CurveGraph &graph, double weld, double diagonal);
 
 /// A constraint of the stroke fit: the curve passes through `position` at

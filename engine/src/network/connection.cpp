@@ -301,9 +301,15 @@ std::vector<std::vector<int>> pleatedCorners(const std::vector<BSplineCurve> &cu
 // halves into two 7-gons (most even parts first instead, gregory-g1
 // deviated up to 4.8% on the loops of 9–16 sides against 2.5%); an uneven
 // one takes the most even parts first (balanced parts first, gregory-g2
-// deviated 4.8% on the Fig. 9 10-gon against 1.2%). An uneven loop of at
-// most kMaxPartSides sides takes the split only if its worse part is more
-// even than the loop. The parts are split again in the same way (a 16-gon
+// deviated 4.8% on the Fig. 9 10-gon against 1.2%). Equally even splits
+// are common (the worse part's longest and shortest pieces stay the same
+// whichever of several corners and midpoints the curve leaves from) and
+// take the one whose larger part has the fewest sides: the order among
+// them was the sort's, so near-mirror loops were split differently
+// (doghead.obj's user face 0 into a quad and a 7-gon, its mirror image 22
+// into two hexagons), and the 7-gon folded under composite-ribbon. An
+// uneven loop of at most kMaxPartSides sides takes the split only if its
+// worse part is more even than the loop. The parts are split again in the same way (a 16-gon
 // ends in four parts of 5 and 6 sides). Choosing by the domain map's
 // distortion instead (the worst σ₁/σ₂ over the fan triangles, affine part
 // taken out) measured worse on balance: over loops of 9–16 sides gregory-g1
@@ -576,11 +582,13 @@ public:
         candidates.push_back({a, b, more, std::max(sideRatio(first), sideRatio(second))});
       }
     // A many-sided loop whose sides are even: the larger part's side count
-    // first (balanced parts); an uneven one: the most even parts first.
+    // first (balanced parts); an uneven one: the most even parts first, then
+    // the fewest sides of the larger part.
     const bool balanced = manySided && !uneven;
     std::sort(candidates.begin(), candidates.end(), [balanced](const Candidate &x, const Candidate &y) {
       if (balanced && x.sides != y.sides) return x.sides < y.sides;
-      return x.worse < y.worse;
+      if (x.worse != y.worse) return x.worse < y.worse;
+      return x.sides < y.sides;
     });
     // A many-sided loop takes the best split, an uneven one only a more even one.
     const double own = manySided ? INFINITY : sideRatio(outline(plan, 0, 0));
