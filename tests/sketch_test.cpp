@@ -456,11 +456,13 @@ TEST(Sketch, StrokeEndsNearAnotherStrokeBecomeTNodesOrDangleBelowTheWeld) {
   EXPECT_EQ(loose.description.faces.size(), 6u);
 }
 
-TEST(Sketch, CornersOfStrokesSharingAPointAreNodesAndTheOpenSideOfASheetIsLeftOut) {
-  // A square sheet drawn as one closed stroke with four corners, gently
-  // domed, and a stroke across it whose ends stop short of the sides.
+namespace {
+/// The gently domed square sheet z = 0.1 (2 − x² − y²) over [−1, 1]², its
+/// outline drawn as one closed stroke with four corners.
+Vec3 dome(double x, double y) { return Vec3{x, y, 0.1 * (2 - x * x - y * y)}; }
+
+CurveGraph domedSquareOutline() {
   CurveGraph g;
-  auto dome = [](double x, double y) { return Vec3{x, y, 0.1 * (2 - x * x - y * y)}; };
   std::vector<int> outline;
   const double corner[5][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {-1, -1}};
   for (int side = 0; side < 4; ++side)
@@ -472,6 +474,14 @@ TEST(Sketch, CornersOfStrokesSharingAPointAreNodesAndTheOpenSideOfASheetIsLeftOu
     }
   outline.push_back(outline.front());
   g.strokes.push_back(outline);
+  return g;
+}
+} // namespace
+
+TEST(Sketch, CornersOfStrokesSharingAPointAreNodesAndTheOpenSideOfASheetIsLeftOut) {
+  // A square sheet drawn as one closed stroke with four corners, gently
+  // domed, and a stroke across it whose ends stop short of the sides.
+  CurveGraph g = domedSquareOutline();
   const double gap = 1e-3;
   addStroke(g, 30, [&](double t) { return dome(0.2, -1 + gap + (2 - 2 * gap) * t); });
   const SketchResult r = networkFromCurveGraph(g);
@@ -498,19 +508,7 @@ TEST(Sketch, StrokesEndingAtOneJunctionAtASmallAngleAreNotJoinedShortOfIt) {
   // the weld distance of each other for several samples, as two strokes
   // drawn into one junction do (doghead.obj's 20° junction). They meet at
   // the corner only, not at an X one sample short of it.
-  CurveGraph g;
-  auto dome = [](double x, double y) { return Vec3{x, y, 0.1 * (2 - x * x - y * y)}; };
-  std::vector<int> outline;
-  const double corner[5][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {-1, -1}};
-  for (int side = 0; side < 4; ++side)
-    for (int k = 0; k < 30; ++k) {
-      const double t = k / 30.0;
-      outline.push_back(static_cast<int>(g.points.size()));
-      g.points.push_back(dome(corner[side][0] + (corner[side + 1][0] - corner[side][0]) * t,
-                              corner[side][1] + (corner[side + 1][1] - corner[side][1]) * t));
-    }
-  outline.push_back(outline.front());
-  g.strokes.push_back(outline);
+  CurveGraph g = domedSquareOutline();
   const double gap = 1e-3;
   for (const double degrees : {10.0, 30.0}) {
     const double slope = std::tan(degrees * kPi / 180);
