@@ -284,7 +284,8 @@ public:
   /// The origin of the patches' internal frame in world coordinates: zero,
   /// except for a network whose bounding-box centre lies more than 4
   /// diagonals from the origin (e.g. a part placed at 1e6 in a large
-  /// assembly). Such a network is built translated to that centre, so the
+  /// assembly). Such a network is built translated to that centre, vertex
+  /// repair included (network() is the repaired one, back in place), so the
   /// patches' arithmetic keeps the model's own precision (normals and
   /// continuity figures as good as at the origin); every point returned is
   /// translated back. Only the rounding of the final addition remains.

@@ -723,7 +723,44 @@ std::vector<int> facesOf(const Network &network, std::span<const int> segments) 
 }
 } // namespace
 
+namespace {
+/// The description with every point moved by `offset` (curves, masters, the reference surface).
+NetworkDescription translated(NetworkDescription description, const Vec3 &offset) {
+  for (BSplineCurve &curve : description.curves) {
+    std::vector<Vec3> points = curve.controlPoints();
+    for (Vec3 &p : points) p += offset;
+    curve = BSplineCurve(curve.degree(), curve.knots(), std::move(points), curve.weights());
+  }
+  if (description.reference) description.reference->center += offset;
+  for (BSplineSurface &master : description.surfaces) {
+    std::vector<Vec3> points = master.controlPoints();
+    for (Vec3 &p : points) p += offset;
+    master = BSplineSurface(master.degreeU(), master.degreeV(), master.knotsU(), master.knotsV(), master.countU(),
+                            master.countV(), std::move(points), master.weights());
+  }
+  return description;
+}
+} // namespace
+
 Surface Surface::build(const Network &network, const SurfaceOptions &options) {
+  // A model far from the origin is built translated to its bounding-box
+  // centre, and points are translated back on the way out. First of all
+  // stages: the vertex repair's curvatures (second derivatives at the ends
+  // of split curves) lose digits with the coordinates' size too, and a
+  // sketch 4 diagonals from the origin was repaired at two more vertices
+  // than the same sketch at it.
+  if (needsOriginShift(network)) {
+    const Vec3 centre = network.bounds().center();
+    Surface surface = build(Network::build(translated(network.description(), -centre)), options);
+    // The surface was made here and is not shared yet: completing it is safe.
+    const auto impl = std::const_pointer_cast<Impl>(surface.impl_);
+    // Its network is the repaired one where the repair moved curves.
+    impl->network = impl->repairMoves.empty()
+                        ? network
+                        : Network::build(translated(impl->network.description(), centre), network.name());
+    impl->origin = centre;
+    return surface;
+  }
   // Vertex repair (curvenet/analysis.hpp) is the stage before all others:
   // the surface is built on, and reports, the repaired network.
   // Fans the repair left alone are reported even when nothing moved.
@@ -739,30 +776,6 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
       impl->repairSkipped = std::move(repair.skipped);
       return surface;
     }
-  // A model far from the origin is built translated to its bounding-box
-  // centre, and points are translated back on the way out.
-  if (needsOriginShift(network)) {
-    const Vec3 centre = network.bounds().center();
-    NetworkDescription local = network.description();
-    for (BSplineCurve &curve : local.curves) {
-      std::vector<Vec3> points = curve.controlPoints();
-      for (Vec3 &p : points) p -= centre;
-      curve = BSplineCurve(curve.degree(), curve.knots(), std::move(points), curve.weights());
-    }
-    if (local.reference) local.reference->center -= centre;
-    for (BSplineSurface &master : local.surfaces) {
-      std::vector<Vec3> points = master.controlPoints();
-      for (Vec3 &p : points) p -= centre;
-      master = BSplineSurface(master.degreeU(), master.degreeV(), master.knotsU(), master.knotsV(), master.countU(),
-                              master.countV(), std::move(points), master.weights());
-    }
-    Surface surface = build(Network::build(local), options);
-    // The surface was made here and is not shared yet: completing it is safe.
-    const auto impl = std::const_pointer_cast<Impl>(surface.impl_);
-    impl->network = network;
-    impl->origin = centre;
-    return surface;
-  }
   const bool g2 = options.scheme == Scheme::GregoryG2;
   const auto &reference = network.reference();
   if (g2 && options.sweepline == Sweepline::Radial)
@@ -809,6 +822,10 @@ Surface Surface::build(const Network &network, const SurfaceOptions &options) {
 
 SurfaceEdit Surface::rebuildAfterEdit(const Network &edited) const {
   const Impl &old = *impl_;
+  // A model built translated (see build) is rebuilt whole, translated first
+  // and repaired there.
+  if (old.origin != Vec3{} || needsOriginShift(edited))
+    return {build(edited, old.options), allIndices(edited.faces().size()), false};
   // The vertex repair first, as in build: the repaired edit differs from this
   // surface's (repaired) network near the edit only, so the rebuild below
   // stays partial; repairing it again changes nothing.
