@@ -144,6 +144,18 @@ std::vector<std::array<int, 2>> cornersAt(const Network &network, int v) {
   return corners;
 }
 
+/// Why a fan is left alone when its turns would exceed kMaxCreaseTurn.
+constexpr const char *kTurnTooLarge = "needs a turn of more than 16°";
+
+/// True when `end`'s curve passes through the vertex (another end of the
+/// same curve at the same parameter): turning it turns both halves.
+bool passesThrough(const VertexAnalysis &va, const CurveEnd &end) {
+  for (const CurveEnd &other : va.ends)
+    if (&other != &end && other.sourceCurve == end.sourceCurve && other.sourceParameter == end.sourceParameter)
+      return true;
+  return false;
+}
+
 /// The unit normal of the plane that holds `line` and, among the planes
 /// through it, spreads the `others` most (their least-squares plane about
 /// that line).
@@ -196,11 +208,9 @@ std::string turnFan(const VertexAnalysis &va, const CurveEnd &a, const CurveEnd 
     if (turnBounds[1]) ends.push_back(&b);
     for (const CurveEnd *end : ends) {
       if (std::abs(dot(end->tangent, n)) <= std::sin(tolerance)) continue;
-      for (const CurveEnd &other : va.ends)
-        if (&other != end && other.sourceCurve == end->sourceCurve && other.sourceParameter == end->sourceParameter)
-          return "curve " + std::to_string(end->sourceCurve) + " passes through the vertex";
+      if (passesThrough(va, *end)) return "curve " + std::to_string(end->sourceCurve) + " passes through the vertex";
       turns.emplace_back(end->sourceCurve, turnInto(va, *end, n));
-      if (angleBetween(end->tangent, turns.back().second.to) > kMaxCreaseTurn) return "needs a turn of more than 16°";
+      if (angleBetween(end->tangent, turns.back().second.to) > kMaxCreaseTurn) return kTurnTooLarge;
     }
     return "";
   };
@@ -208,7 +218,7 @@ std::string turnFan(const VertexAnalysis &va, const CurveEnd &a, const CurveEnd 
   const Vec3 exact = norm(across) < std::sin(kMaxCreaseTurn) ? planeThroughLine(normalized(a.tangent - b.tangent), innerTangents)
                                                              : normalized(across);
   std::string refusal = turnsInto(exact, {false, false});
-  if (refusal == "needs a turn of more than 16°" && (free[0] || free[1])) {
+  if (refusal == kTurnTooLarge && (free[0] || free[1])) {
     std::vector<Vec3> all = innerTangents;
     if (free[0]) all.push_back(a.tangent);
     if (free[1]) all.push_back(b.tangent);
@@ -291,11 +301,7 @@ void turnCreaseFans(const Network &network, const std::vector<VertexFrame> &fram
   // on its other side lies a lone face corner (a fan without G¹ curves), and
   // the curve ends here (turning a curve passing through turns both halves).
   auto mayTurn = [&](int bound, const Fan &own) {
-    const CurveEnd &end = *endOf[bound];
-    if (network.segments()[bound].isBoundary()) return false;
-    for (const CurveEnd &other : va.ends)
-      if (&other != &end && other.sourceCurve == end.sourceCurve && other.sourceParameter == end.sourceParameter)
-        return false;
+    if (network.segments()[bound].isBoundary() || passesThrough(va, *endOf[bound])) return false;
     for (const Fan &fan : split)
       if (&fan != &own && !fan.inner.empty() &&
           std::find(fan.bounds.begin(), fan.bounds.end(), bound) != fan.bounds.end())

@@ -208,9 +208,9 @@ LoopPoint foldEnd(const std::vector<BSplineCurve> &curves, const Loop &loop, int
   const int n = static_cast<int>(loop.size());
   const SidePoint prev = sidePoint(curves, loop[(k + n - 1) % n], 1.0), next = sidePoint(curves, loop[k], 0.0);
   const Vec3 fold = foldDirection(curves, loop, k, other), chord = other - next.point;
-  const Vec3 across = chord - fold * dot(fold, chord);
   // A chord along the fold: any plane through the fold will do.
-  const Vec3 normal = norm(across) > 1e-9 * norm(chord) ? normalized(across) : orthogonalTo(next.tangent, fold);
+  const bool across = norm(cross(fold, chord)) > 1e-9 * norm(chord);
+  const Vec3 normal = orthogonalTo(across ? chord : next.tangent, fold);
   return LoopPoint{next.point, prev.tangent, next.tangent, normal};
 }
 

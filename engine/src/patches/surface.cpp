@@ -721,9 +721,7 @@ std::vector<int> facesOf(const Network &network, std::span<const int> segments) 
       if (f >= 0) faces.push_back(f);
   return sortedUnique(std::move(faces));
 }
-} // namespace
 
-namespace {
 /// The description with every point moved by `offset` (curves, masters, the reference surface).
 NetworkDescription translated(NetworkDescription description, const Vec3 &offset) {
   for (BSplineCurve &curve : description.curves) {
@@ -842,8 +840,7 @@ SurfaceEdit Surface::rebuildAfterEdit(const Network &edited) const {
   }
   // Kept G¹ master faces: a full build (their fences and patches come from
   // the G¹ surface, which an edit rebuilds in part by itself).
-  const bool partial = !old.bezier && old.keptG1.empty() && old.origin == Vec3{} && !needsOriginShift(edited) &&
-                       sameTopology(old.network, edited);
+  const bool partial = !old.bezier && old.keptG1.empty() && sameTopology(old.network, edited);
   if (!partial) return {build(edited, old.options), allIndices(edited.faces().size()), false};
 
   // What the edit touched: segments whose curve changed (and those of face
