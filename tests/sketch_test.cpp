@@ -554,6 +554,45 @@ TEST(Sketch, StrokesEndingAtOneJunctionAtASmallAngleAreNotJoinedShortOfIt) {
   EXPECT_EQ(crossed.count(NodeKind::X), 1u);
 }
 
+// A scribble: thousands of short strokes drawn inside a few weld distances,
+// beside a frame that sets the diagonal. Every pair of its pieces is a
+// crossing candidate; the weld compared them all and followed every path
+// from each, minutes for 2 400 points. It now refuses by name once the pairs
+// it compares pass its budget, and a sparser scribble of the same kind is
+// still welded.
+TEST(Sketch, AScribbleInsideTheWeldDistanceIsRefusedByNameAndASparseOneIsWelded) {
+  const auto scribble = [](int points, double size) {
+    CurveGraph graph;
+    graph.points = {{0, 0, 0}, {1000, 0, 0}, {0, 1000, 0}};
+    graph.strokes = {{0, 1}, {1, 2}};
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-size, size);
+    for (int i = 0; i < points; ++i) graph.points.push_back({500 + u(rng), u(rng), u(rng)});
+    for (int first = 3; first < points + 3; first += 12) {
+      std::vector<int> stroke;
+      for (int p = first; p < std::min(first + 12, points + 3); ++p) stroke.push_back(p);
+      graph.strokes.push_back(stroke);
+    }
+    return graph;
+  };
+  try {
+    networkFromCurveGraph(scribble(2400, 1.0), {}, "scribble.obj");
+    ADD_FAILURE() << "a scribble within the weld distance was welded";
+  } catch (const InputError &e) {
+    EXPECT_EQ(e.file(), "scribble.obj");
+    EXPECT_NE(e.element().find("strokes near (5"), std::string::npos) << e.what();
+    EXPECT_NE(e.reason().find("--weld"), std::string::npos) << e.what();
+  }
+  // 240 points: a few pieces within the weld distance of each, welded into
+  // nodes; the frame's two strokes alone bound no face.
+  try {
+    const SketchResult sparse = networkFromCurveGraph(scribble(240, 1.0), {}, "sparse.obj");
+    EXPECT_FALSE(sparse.nodes.empty());
+  } catch (const InputError &e) {
+    EXPECT_EQ(std::string(e.what()).find("--weld"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Sketch, LoneCyclesBesideOtherPartsAreNamedNotCapped) {
   // A tube drawn as its two rims, nothing along it: the region between them
   // is a cylinder, not two discs.

@@ -797,7 +797,13 @@ SketchResult networkFromCurveGraph(const CurveGraph &input, const SketchOptions 
   const double diagonal = box.diagonal();
   if (!(diagonal > 0)) throw InputError(file, {}, "the curve graph has no extent (all points coincide)");
   if (!(options.weld >= 0 && options.weld < 0.1)) throw InputError(file, {}, "the weld distance must be in [0, 0.1) of the diagonal");
-  const graph::WeldedGraph welded = graph::weldCurveGraph(input, options.weld * diagonal, diagonal);
+  const graph::WeldedGraph welded = [&] {
+    try {
+      return graph::weldCurveGraph(input, options.weld * diagonal, diagonal);
+    } catch (const InputError &e) {
+      throw e.inFile(file);
+    }
+  }();
   SketchResult result = graph::Builder(welded, input, options, diagonal, file).run();
   graph::markCreases(result, file);
   return result;

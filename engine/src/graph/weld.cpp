@@ -4,9 +4,12 @@
 #include <cmath>
 #include <cstdint>
 #include <queue>
+#include <sstream>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
+
+#include "curvenet/error.hpp"
 
 #include "graph/welded_graph.hpp"
 
@@ -22,6 +25,19 @@ namespace {
 // distance of each other only inside that reach).
 constexpr double kStraightPath = 1.2;
 constexpr double kConvergenceReach = 20;
+// joinCrossings: a piece keeps at most this many nearest pieces as crossing
+// candidates, and a search along the strokes visits at most this many points
+// (the shared-point test needs at most 6 on the public sketches); both bound
+// the weld's work on a tangle drawn within the weld distance, which took
+// minutes when every pair and every path was followed.
+constexpr std::size_t kCandidatesPerPiece = 16;
+constexpr std::size_t kAlongBudget = 256;
+constexpr std::size_t kPathBudget = 4096; // pathLengthsFrom, nearest first
+// crossingCandidates: pairs of pieces it compares before it refuses the
+// sketch, a fixed allowance plus this many per piece. The public sketches
+// compare at most 4.1 pairs per piece (bathtub.obj: 20 807 for 5 064).
+constexpr std::size_t kPairAllowance = 2'000'000;
+constexpr std::size_t kPairsPerPiece = 100;
 
 /// Points hashed into cubic cells, for neighbour queries within a radius.
 class PointGrid {
@@ -143,6 +159,33 @@ public:
     for (const auto &l : g_.links[start]) seen.insert(l.point);
     return seen;
   }
+  /// True when `b0` or `b1` is among the points nearAlongStrokes(start,
+  /// reach) would return. The search stops at the first of them, and after
+  /// kAlongBudget points it answers true: a tangle that dense within the
+  /// reach is already joined there as far as the weld can tell, and every
+  /// answer costs at most the budget, whatever the input.
+  bool reachesAlongStrokes(int start, double reach, int b0, int b1) {
+    for (const auto &l : g_.links[start])
+      if (l.point == b0 || l.point == b1) return true;
+    if (start == b0 || start == b1) return true;
+    if (mark_.size() < g_.points.size()) mark_.resize(g_.points.size(), 0);
+    if (++stamp_ == 0) std::fill(mark_.begin(), mark_.end(), 0), stamp_ = 1;
+    mark_[start] = stamp_;
+    queue_.clear();
+    queue_.push_back({start, 0.0});
+    for (std::size_t head = 0; head < queue_.size(); ++head) {
+      if (queue_.size() > kAlongBudget) return true;
+      const auto [p, d] = queue_[head];
+      for (const auto &l : g_.links[p]) {
+        const double next = d + norm(g_.points[l.point] - g_.points[p]);
+        if (next > reach || mark_[l.point] == stamp_) continue;
+        if (l.point == b0 || l.point == b1) return true;
+        mark_[l.point] = stamp_;
+        queue_.push_back({l.point, next});
+      }
+    }
+    return false;
+  }
   /// Path lengths along the strokes from the point at parameter s of piece
   /// (a, b) to every point it reaches within `reach` (shortest paths). The
   /// paths stop at crossings this pass has joined: two strokes crossing at a
@@ -161,6 +204,7 @@ public:
       queue.pop();
       if (best.count(p)) continue;
       best[p] = d;
+      if (best.size() >= kPathBudget) break;
       if (g_.madeAs[p] == NodeKind::X) continue;
       for (const auto &l : g_.links[p]) {
         const double next = d + norm(g_.points[l.point] - g_.points[p]);
@@ -250,43 +294,85 @@ public:
     }
   }
 
+  struct Candidate {
+    double distance;
+    int first, second;
+    double s, t;
+  };
+  [[noreturn]] void refuseCrowd(const Vec3 &at, std::size_t compared) const {
+    std::ostringstream where, why;
+    where << "strokes near (" << at.x << ", " << at.y << ", " << at.z << ")";
+    why << "more than " << compared - 1 << " pairs of stroke pieces lie within a few weld distances (" << weld_
+        << ") of one another: the strokes are a tangle at this weld distance; give a smaller one (--weld)";
+    throw InputError({}, where.str(), why.str());
+  }
+  /// Pairs of pieces (indices into `all`, first < second) closer than the
+  /// weld distance, nearest first, at most kCandidatesPerPiece per piece.
+  /// Each piece is hashed into every cell it passes through, cells as large
+  /// as the mean piece plus the weld distance: a long piece (a stroke drawn
+  /// as one straight segment) then finds only the pieces along it, not every
+  /// piece of the sketch.
+  std::vector<Candidate> crossingCandidates(const std::vector<std::pair<int, int>> &all) const {
+    double total = 0;
+    for (auto [a, b] : all) total += norm(g_.points[b] - g_.points[a]);
+    const double step = std::max(weld_, all.empty() ? 0.0 : total / static_cast<double>(all.size()));
+    PointGrid grid(step + weld_);
+    // Samples at most `step` apart: two pieces within the weld distance have
+    // samples within step + weld of each other, in neighbouring cells.
+    const auto samples = [&](int k, auto &&visit) {
+      const Vec3 a = g_.points[all[k].first], b = g_.points[all[k].second];
+      const int n = static_cast<int>(std::min(1e6, std::ceil(norm(b - a) / step)));
+      for (int i = 0; i <= n; ++i) visit(a + (b - a) * (n > 0 ? static_cast<double>(i) / n : 0.0));
+    };
+    for (int k = 0; k < static_cast<int>(all.size()); ++k)
+      samples(k, [&](const Vec3 &p) { grid.add(p, k); });
+    std::vector<Candidate> candidates, own;
+    std::vector<int> seenBy(all.size(), -1);
+    std::size_t compared = 0;
+    const std::size_t budget = kPairAllowance + kPairsPerPiece * all.size();
+    for (int k = 0; k < static_cast<int>(all.size()); ++k) {
+      // Plain names, not a structured binding: the lambda below captures them.
+      const int a0 = all[k].first, a1 = all[k].second;
+      own.clear();
+      samples(k, [&](const Vec3 &p) {
+        grid.near(p, [&](int j) {
+          if (j <= k || seenBy[j] == k) return;
+          seenBy[j] = k;
+          if (++compared > budget) refuseCrowd(g_.points[a0], compared);
+          const auto [b0, b1] = all[j];
+          if (a0 == b0 || a0 == b1 || a1 == b0 || a1 == b1) return;
+          const auto [s, t] = closestParameters(g_.points[a0], g_.points[a1], g_.points[b0], g_.points[b1]);
+          const Vec3 pa = g_.points[a0] + (g_.points[a1] - g_.points[a0]) * s;
+          const Vec3 pb = g_.points[b0] + (g_.points[b1] - g_.points[b0]) * t;
+          if (const double d = norm(pa - pb); d < weld_) own.push_back({d, k, j, s, t});
+        });
+      });
+      const auto nearer = [](const Candidate &x, const Candidate &y) {
+        return x.distance < y.distance || (x.distance == y.distance && x.second < y.second);
+      };
+      if (own.size() > kCandidatesPerPiece) {
+        std::nth_element(own.begin(), own.begin() + kCandidatesPerPiece, own.end(), nearer);
+        own.resize(kCandidatesPerPiece);
+      }
+      candidates.insert(candidates.end(), own.begin(), own.end());
+    }
+    std::stable_sort(candidates.begin(), candidates.end(),
+                     [](const Candidate &x, const Candidate &y) { return x.distance < y.distance; });
+    return candidates;
+  }
+
   /// Pieces of strokes that pass within the weld distance of each other
   /// without sharing a point nearby are joined at their closest points.
   void joinCrossings() {
     const auto all = pieces();
-    const double cell = std::max(longestPiece(), weld_) + weld_;
-    PointGrid grid(cell);
-    for (int k = 0; k < static_cast<int>(all.size()); ++k)
-      grid.add((g_.points[all[k].first] + g_.points[all[k].second]) * 0.5, k);
-    struct Candidate {
-      double distance;
-      int first, second;
-      double s, t;
-    };
-    std::vector<Candidate> candidates;
-    for (int k = 0; k < static_cast<int>(all.size()); ++k) {
-      // Plain names, not a structured binding: the lambda below captures them.
-      const int a0 = all[k].first, a1 = all[k].second;
-      grid.near((g_.points[a0] + g_.points[a1]) * 0.5, [&](int j) {
-        if (j <= k) return;
-        const auto [b0, b1] = all[j];
-        if (a0 == b0 || a0 == b1 || a1 == b0 || a1 == b1) return;
-        const auto [s, t] = closestParameters(g_.points[a0], g_.points[a1], g_.points[b0], g_.points[b1]);
-        const Vec3 pa = g_.points[a0] + (g_.points[a1] - g_.points[a0]) * s;
-        const Vec3 pb = g_.points[b0] + (g_.points[b1] - g_.points[b0]) * t;
-        if (const double d = norm(pa - pb); d < weld_) candidates.push_back({d, k, j, s, t});
-      });
-    }
-    std::sort(candidates.begin(), candidates.end(),
-              [](const Candidate &x, const Candidate &y) { return x.distance < y.distance; });
+    const auto candidates = crossingCandidates(all);
     std::vector<bool> used(all.size(), false);
     for (const Candidate &c : candidates) {
       if (used[c.first] || used[c.second]) continue;
       const auto [a0, a1] = all[c.first];
       const auto [b0, b1] = all[c.second];
       // Pieces already joined nearby (a shared point within reach) are not a crossing.
-      const auto own = nearAlongStrokes(a0, 3 * weld_ + norm(g_.points[a1] - g_.points[a0]));
-      if (own.count(b0) || own.count(b1)) continue;
+      if (reachesAlongStrokes(a0, 3 * weld_ + norm(g_.points[a1] - g_.points[a0]), b0, b1)) continue;
       used[c.first] = used[c.second] = true;
       if (convergeIntoSharedPoint(a0, a1, c.s, b0, b1, c.t)) continue;
       const int pa = split(a0, a1, c.s, NodeKind::X);
@@ -303,6 +389,10 @@ public:
 private:
   WeldedGraph &g_;
   double weld_;
+  // reachesAlongStrokes: visited marks by search, and its queue.
+  std::vector<std::uint32_t> mark_;
+  std::uint32_t stamp_ = 0;
+  std::vector<std::pair<int, double>> queue_;
 };
 
 } // namespace
