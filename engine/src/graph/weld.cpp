@@ -6,7 +6,6 @@
 #include <queue>
 #include <sstream>
 #include <unordered_map>
-#include <unordered_set>
 #include <utility>
 
 #include "curvenet/error.hpp"
@@ -142,50 +141,37 @@ public:
     return g_.links[p][0].point == not_ ? g_.links[p][1].point : g_.links[p][0].point;
   }
 
-  /// Points reachable from `start` along the polyline within path length `reach`.
-  std::unordered_set<int> nearAlongStrokes(int start, double reach) const {
-    std::unordered_set<int> seen{start};
-    std::queue<std::pair<int, double>> queue;
-    queue.push({start, 0.0});
-    while (!queue.empty()) {
-      auto [p, d] = queue.front();
-      queue.pop();
-      for (const auto &l : g_.links[p]) {
-        const double next = d + norm(g_.points[l.point] - g_.points[p]);
-        if (next <= reach && seen.insert(l.point).second) queue.push({l.point, next});
-      }
-    }
-    // The neighbours themselves are always "along": their piece is the end's own.
-    for (const auto &l : g_.links[start]) seen.insert(l.point);
-    return seen;
-  }
-  /// True when `b0` or `b1` is among the points nearAlongStrokes(start,
-  /// reach) would return. The search stops at the first of them, and after
-  /// kAlongBudget points it answers true: a tangle that dense within the
-  /// reach is already joined there as far as the weld can tell, and every
-  /// answer costs at most the budget, whatever the input.
-  bool reachesAlongStrokes(int start, double reach, int b0, int b1) {
+  /// Marks the points reachable from `start` along the polyline within path
+  /// length `reach`, and start's neighbours (their piece is its own);
+  /// marked(p) tells them until the next search. Stops with true at the
+  /// first of `stopA`, `stopB` it reaches, and after kAlongBudget points: a
+  /// tangle that dense within the reach is already joined there as far as
+  /// the weld can tell, and every search costs at most the budget, whatever
+  /// the input.
+  bool markAlongStrokes(int start, double reach, int stopA = -1, int stopB = -1) {
+    const auto stops = [&](int p) { return p == stopA || p == stopB; };
+    if (stops(start)) return true;
     for (const auto &l : g_.links[start])
-      if (l.point == b0 || l.point == b1) return true;
-    if (start == b0 || start == b1) return true;
+      if (stops(l.point)) return true;
     if (mark_.size() < g_.points.size()) mark_.resize(g_.points.size(), 0);
     if (++stamp_ == 0) std::fill(mark_.begin(), mark_.end(), 0), stamp_ = 1;
     mark_[start] = stamp_;
-    queue_.clear();
-    queue_.push_back({start, 0.0});
+    queue_.assign(1, {start, 0.0});
     for (std::size_t head = 0; head < queue_.size(); ++head) {
       if (queue_.size() > kAlongBudget) return true;
       const auto [p, d] = queue_[head];
       for (const auto &l : g_.links[p]) {
         const double next = d + norm(g_.points[l.point] - g_.points[p]);
-        if (next > reach || mark_[l.point] == stamp_) continue;
-        if (l.point == b0 || l.point == b1) return true;
+        if (next > reach || marked(l.point)) continue;
+        if (stops(l.point)) return true;
         mark_[l.point] = stamp_;
         queue_.push_back({l.point, next});
       }
     }
+    for (const auto &l : g_.links[start]) mark_[l.point] = stamp_;
     return false;
   }
+  bool marked(int p) const { return p < static_cast<int>(mark_.size()) && mark_[p] == stamp_; }
   /// Path lengths along the strokes from the point at parameter s of piece
   /// (a, b) to every point it reaches within `reach` (shortest paths). The
   /// paths stop at crossings this pass has joined: two strokes crossing at a
@@ -265,16 +251,16 @@ public:
     for (int end = 0; end < originalPoints; ++end) {
       if (g_.links[end].size() != 1) continue;
       const Vec3 at = g_.points[end];
-      const auto own = nearAlongStrokes(end, 3 * weld_);
+      markAlongStrokes(end, 3 * weld_); // marked: the end's own stroke nearby
       int bestPoint = -1;
       double bestPointDistance = weld_;
       int bestA = -1, bestB = -1;
       double bestS = 0, bestPieceDistance = weld_;
       grid.near(at, [&](int q) {
-        if (own.count(q) || g_.links[q].empty()) return;
+        if (marked(q) || g_.links[q].empty()) return;
         if (const double d = norm(g_.points[q] - at); d <= bestPointDistance) bestPointDistance = d, bestPoint = q;
         for (const auto &l : g_.links[q]) {
-          if (own.count(l.point)) continue;
+          if (marked(l.point)) continue;
           const Vec3 a = g_.points[q], b = g_.points[l.point];
           const double len2 = squaredNorm(b - a);
           const double s = len2 > 0 ? std::clamp(dot(at - a, b - a) / len2, 0.0, 1.0) : 0.0;
@@ -321,7 +307,7 @@ public:
     // samples within step + weld of each other, in neighbouring cells.
     const auto samples = [&](int k, auto &&visit) {
       const Vec3 a = g_.points[all[k].first], b = g_.points[all[k].second];
-      const int n = static_cast<int>(std::min(1e6, std::ceil(norm(b - a) / step)));
+      const int n = static_cast<int>(std::ceil(norm(b - a) / step)); // at most the piece count
       for (int i = 0; i <= n; ++i) visit(a + (b - a) * (n > 0 ? static_cast<double>(i) / n : 0.0));
     };
     for (int k = 0; k < static_cast<int>(all.size()); ++k)
@@ -372,7 +358,7 @@ public:
       const auto [a0, a1] = all[c.first];
       const auto [b0, b1] = all[c.second];
       // Pieces already joined nearby (a shared point within reach) are not a crossing.
-      if (reachesAlongStrokes(a0, 3 * weld_ + norm(g_.points[a1] - g_.points[a0]), b0, b1)) continue;
+      if (markAlongStrokes(a0, 3 * weld_ + norm(g_.points[a1] - g_.points[a0]), b0, b1)) continue;
       used[c.first] = used[c.second] = true;
       if (convergeIntoSharedPoint(a0, a1, c.s, b0, b1, c.t)) continue;
       const int pa = split(a0, a1, c.s, NodeKind::X);
@@ -389,7 +375,7 @@ public:
 private:
   WeldedGraph &g_;
   double weld_;
-  // reachesAlongStrokes: visited marks by search, and its queue.
+  // markAlongStrokes: the marks of its searches (stamp_ is the current one), and its queue.
   std::vector<std::uint32_t> mark_;
   std::uint32_t stamp_ = 0;
   std::vector<std::pair<int, double>> queue_;
