@@ -28,7 +28,9 @@
 //     through its nodes; control points are added until the largest distance
 //     from a point to the curve point at its parameter (an upper bound on
 //     its distance to the curve) is within the fit tolerance, or no more can
-//     be placed. Where the edges at a node nearly share a plane (no edge
+//     be placed; then the fairing weight is raised tenfold at a time while
+//     that distance stays within a quarter of the tolerance, so that a
+//     hand's wobble on a short edge does not become curvature. Where the edges at a node nearly share a plane (no edge
 //     leaves their best plane by more than 25°), every curve's tangent there
 //     is constrained to that plane: the G¹ vertex condition by construction.
 //  4. faces: a rotation system traced into loops. At every node the edges
@@ -116,8 +118,9 @@ struct SketchOptions {
   /// Largest distance of a stroke point from its fitted curve, relative to
   /// the diagonal, that the fit aims for.
   double fitTolerance = 2e-3;
-  /// Weight of the fairing term (squared third differences of the control
-  /// points) relative to the mean squared data term.
+  /// Starting weight of the fairing term (squared third differences of the
+  /// control points) relative to the mean squared data term (step 3 raises
+  /// it while the fit stays within a quarter of fitTolerance).
   double fairing = 1e-6;
 };
 

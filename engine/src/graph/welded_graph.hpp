@@ -54,7 +54,9 @@ std::vector<double> chordLengthParameters(std::span<const Vec3> points);
 
 /// Least-squares cubic through `points` at `parameters` with the fairing
 /// weight, meeting every node exactly; control points are added until the
-/// error is at most `tolerance` (absolute) or the data cannot carry more.
+/// error is at most `tolerance` (absolute) or the data cannot carry more;
+/// then the fairing weight is raised tenfold at a time while the error
+/// stays within a quarter of `tolerance` (or its own, where larger).
 /// `closed`: the first and last point are the same node and the curve's
 /// tangent is continuous there.
 FittedStroke fitStroke(std::span<const Vec3> points, std::span<const double> parameters,
