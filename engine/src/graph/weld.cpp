@@ -156,9 +156,14 @@ public:
     if (mark_.size() < g_.points.size()) mark_.resize(g_.points.size(), 0);
     if (++stamp_ == 0) std::fill(mark_.begin(), mark_.end(), 0), stamp_ = 1;
     mark_[start] = stamp_;
+    // start's neighbours are marked whichever way the search ends: a free
+    // end must never weld onto its own piece.
+    const auto markNeighbours = [&] {
+      for (const auto &l : g_.links[start]) mark_[l.point] = stamp_;
+    };
     queue_.assign(1, {start, 0.0});
     for (std::size_t head = 0; head < queue_.size(); ++head) {
-      if (queue_.size() > kAlongBudget) return true;
+      if (queue_.size() > kAlongBudget) return markNeighbours(), true;
       const auto [p, d] = queue_[head];
       for (const auto &l : g_.links[p]) {
         const double next = d + norm(g_.points[l.point] - g_.points[p]);
@@ -168,7 +173,7 @@ public:
         queue_.push_back({l.point, next});
       }
     }
-    for (const auto &l : g_.links[start]) mark_[l.point] = stamp_;
+    markNeighbours();
     return false;
   }
   bool marked(int p) const { return p < static_cast<int>(mark_.size()) && mark_[p] == stamp_; }
