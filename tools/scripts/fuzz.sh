@@ -22,7 +22,7 @@ CURVENET_EXTRA_PACKAGES="clang-14 libclang-rt-14-dev" bash "$repo/tools/scripts/
 [ -f "$dir/CMakeCache.txt" ] || CC=clang-14 CXX=clang++-14 cmake -S "$repo" -B "$dir" -G Ninja \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG -DHWY_COMPILE_ONLY_STATIC=1" \
   -DCURVENET_BUILD_FUZZERS=ON -DCURVENET_BUILD_TOOLS=OFF -DCURVENET_BUILD_TESTS=OFF -DCURVENET_BUILD_BENCH=OFF \
-  -DCURVENET_BUILD_PYTHON=OFF -DCURVENET_BUILD_SHARED=OFF
+  -DCURVENET_BUILD_PYTHON=OFF -DCURVENET_BUILD_SHARED=OFF -DCMAKE_UNITY_BUILD=ON
 cmake --build "$dir" -j "$(nproc)"
 
 corpus=$dir/corpus findings=$dir/findings

@@ -16,7 +16,10 @@ flags=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -
        "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DCURVENET_BUILD_BENCH=OFF
        # Debian's python3 cannot load an instrumented module, and the shared
        # library's tests build outside programs without sanitizers.
-       -DCURVENET_BUILD_PYTHON=OFF -DCURVENET_BUILD_SHARED=OFF)
+       -DCURVENET_BUILD_PYTHON=OFF -DCURVENET_BUILD_SHARED=OFF
+       # Unity builds (setup.sh): the program's commands compile in under half
+       # the time, the engine in ~10 % less.
+       -DCMAKE_UNITY_BUILD=ON)
 
 # Packages are the same as for the normal build.
 CURVENET_BUILD_DIR=$repo/build bash "$repo/tools/scripts/setup.sh" --install-only
@@ -36,7 +39,11 @@ if [[ $which == all || $which == thread ]]; then
   dir=$repo/build-tsan
   # Configured every time: a folder from before the renderer joined keeps
   # its tools switched off otherwise.
-  cmake -S "$repo" -B "$dir" -G Ninja "${flags[@]}" -DCURVENET_SANITIZE=thread -DCURVENET_BUILD_TOOLS=ON >/dev/null
+  # The SIMD kernels for the baseline instruction set only: races are between
+  # the parallel loops that call them on their own parts of a buffer, the same
+  # for every width; every width is checked under ASan and in the Release suite.
+  cmake -S "$repo" -B "$dir" -G Ninja "${flags[@]}" -DCURVENET_SANITIZE=thread -DCURVENET_BUILD_TOOLS=ON \
+    -DCMAKE_CXX_FLAGS=-DHWY_COMPILE_ONLY_STATIC=1 >/dev/null
   cmake --build "$dir" -j "$jobs"
   # TBB's own synchronization is not visible to TSan in the Debian build;
   # tests/tsan.supp lists those library frames, nothing of ours.

@@ -36,7 +36,11 @@ fi
 # --install-only: the packages, no build (used by the sanitizer and fuzz scripts).
 if [ "${1:-}" = "--install-only" ]; then exit 0; fi
 
+# A unity build (each target's sources compiled a few at a time as one file)
+# builds from scratch in about three quarters of the time, mostly because the
+# program's commands parse and instantiate CLI11 once per batch instead of
+# once per file. For incremental work configure a folder of your own without it.
 if [ ! -f "$build_dir/CMakeCache.txt" ]; then
-  cmake -S "$repo" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release
+  cmake -S "$repo" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=ON
 fi
 cmake --build "$build_dir" -j "$(nproc)"
