@@ -128,7 +128,7 @@ TEST_F(Cli, KilledTessellateLeavesNoFile) {
   auto spawn = [&](const fs::path &target) {
     const std::string outPath = target.string();
     const char *argv[] = {CURVENET_CLI, "tessellate", "builtin:ellipsoid-truncated-icosahedron", "--resolution",
-                          "128",        "-q",         "-o",  outPath.c_str(), nullptr};
+                          "64",         "-q",         "-o",  outPath.c_str(), nullptr};
     pid_t pid = 0;
     EXPECT_EQ(::posix_spawn(&pid, CURVENET_CLI, nullptr, nullptr, const_cast<char **>(argv), environ), 0);
     return pid;
