@@ -95,7 +95,9 @@ struct PolynomialTable {
 /// values[c][k] and, when slopes is not null, d/ds into slopes[c][k]. Each
 /// sample's interval is looked up, then its row polynomials evaluated with
 /// the coordinates across the SIMD lanes and its tail ones with four
-/// samples across the lanes (the reference: one at a time).
+/// samples across the lanes; on AVX-512, rows of 8 (the engine's layouts)
+/// take eight samples at a time at eight lanes. The reference: one sample
+/// at a time.
 void evaluateTable(std::size_t count, const PolynomialTable &table, const double *s, double *const *values,
                    double *const *slopes, std::int64_t width = kBestWidth);
 
