@@ -96,7 +96,9 @@ template <class D, class V = hn::Vec<D>> struct SweepQuartic {
     const V dH = hn::Mul(six, hn::Mul(s, hn::Sub(s, one)));
     wx = hn::MulAdd(cx, H, bx), wy = hn::MulAdd(cy, H, by);
     sx = hn::Mul(cx, dH), sy = hn::Mul(cy, dH);
-    return hn::IfThenElse(hn::Gt(hn::Abs(wx), hn::Abs(wy)), hn::Div(hn::Sub(x, s), wx), hn::Div(y, wy));
+    // One division: the larger component's quotient.
+    const auto alongX = hn::Gt(hn::Abs(wx), hn::Abs(wy));
+    return hn::Div(hn::IfThenElse(alongX, hn::Sub(x, s), y), hn::IfThenElse(alongX, wx, wy));
   }
 };
 

@@ -49,21 +49,30 @@ HWY_INLINE std::size_t tableInterval(const ck::PolynomialTable &tb, double s) {
   return j;
 }
 
+/// p(t) = Σ c_j t^j (degree 5) by Horner and, when Slopes, dp/dt beside it:
+/// the derivative's Horner runs on the value's partial sums (four
+/// multiply-adds, no scaling of the coefficients by 5, 4, 3, 2). The value
+/// is the same Horner either way, so values alone equal values with slopes.
+template <bool Slopes, class V> HWY_INLINE void quintic(const V (&c)[6], V t, V &value, V &derivative) {
+  V v = hn::MulAdd(c[5], t, c[4]), dv = c[5];
+  for (int j = 3; j >= 0; --j) {
+    if constexpr (Slopes) dv = hn::MulAdd(dv, t, v);
+    v = hn::MulAdd(v, t, c[j]);
+  }
+  value = v;
+  if constexpr (Slopes) derivative = dv;
+}
+
 /// One sample's coordinates x .. x + lanes − 1 (value, and d/ds when
 /// Slopes) over D, whose lanes run across the coordinates; c points at the
 /// sample's interval, t is its local parameter.
 template <bool Slopes, class D, class V = hn::Vec<D>>
 HWY_INLINE void tablePolynomial(D d, const double *c, std::size_t row, V t, V inverseWidth, V &value, V &slope) {
-  const V c0 = hn::LoadU(d, c), c1 = hn::LoadU(d, c + row), c2 = hn::LoadU(d, c + 2 * row);
-  const V c3 = hn::LoadU(d, c + 3 * row), c4 = hn::LoadU(d, c + 4 * row), c5 = hn::LoadU(d, c + 5 * row);
-  value = hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(c5, t, c4), t, c3), t, c2), t, c1), t, c0);
-  if constexpr (Slopes) {
-    const V dv = hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::Mul(hn::Set(d, 5.0), c5), t, hn::Mul(hn::Set(d, 4.0), c4)),
-                                                  t, hn::Mul(hn::Set(d, 3.0), c3)),
-                                       t, hn::Add(c2, c2)),
-                            t, c1);
-    slope = hn::Mul(dv, inverseWidth);
-  }
+  const V coefficient[6] = {hn::LoadU(d, c),           hn::LoadU(d, c + row),     hn::LoadU(d, c + 2 * row),
+                            hn::LoadU(d, c + 3 * row), hn::LoadU(d, c + 4 * row), hn::LoadU(d, c + 5 * row)};
+  V dv;
+  quintic<Slopes>(coefficient, t, value, dv);
+  if constexpr (Slopes) slope = hn::Mul(dv, inverseWidth);
 }
 
 /// The intervals of s[k .. end) into interval, local (the local parameter)
@@ -144,14 +153,10 @@ HWY_INLINE void tailPolynomial(D d, const double *const (&c)[4], V t, V inverseW
   V k[4], k45[4];
   transpose4(d, low, k);
   transpose4<2>(d, high, k45);
-  value = hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(k45[1], t, k45[0]), t, k[3]), t, k[2]), t, k[1]), t, k[0]);
-  if constexpr (Slopes) {
-    const V dv = hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::Mul(hn::Set(d, 5.0), k45[1]), t, hn::Mul(hn::Set(d, 4.0), k45[0])),
-                                                  t, hn::Mul(hn::Set(d, 3.0), k[3])),
-                                       t, hn::Add(k[2], k[2])),
-                            t, k[1]);
-    slope = hn::Mul(dv, inverseWidth);
-  }
+  const V coefficient[6] = {k[0], k[1], k[2], k[3], k45[0], k45[1]};
+  V dv;
+  quintic<Slopes>(coefficient, t, value, dv);
+  if constexpr (Slopes) slope = hn::Mul(dv, inverseWidth);
 }
 
 /// RibbonTable evaluation of four samples at a time over D with four lanes:
@@ -286,20 +291,14 @@ HWY_INLINE std::size_t evaluateTableEights(D d, std::size_t count, const TableAr
       for (std::size_t e = 0; e < kTail; ++e) {
         // Each sample's eight doubles (t⁰ … t⁵, two zeros) → the six
         // coefficients' eight-sample vectors.
-        V raw[8], coefficient[8];
+        V raw[8], column[8];
         for (std::size_t q = 0; q < 8; ++q) raw[q] = hn::LoadU(d, c[q] + 6 * kRow + 8 * e);
-        transpose8(d, raw, coefficient);
-        const V t = hn::Load(d, local + (k - chunkStart));
-        const V(&cf)[8] = coefficient;
-        const V v = hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(cf[5], t, cf[4]), t, cf[3]), t, cf[2]), t, cf[1]), t, cf[0]);
+        transpose8(d, raw, column);
+        const V coefficient[6] = {column[0], column[1], column[2], column[3], column[4], column[5]};
+        V v, dv;
+        quintic<Slopes>(coefficient, hn::Load(d, local + (k - chunkStart)), v, dv);
         hn::StoreU(v, d, values[kRowDims + e] + k);
-        if constexpr (Slopes) {
-          const V dv = hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::MulAdd(hn::Mul(hn::Set(d, 5.0), cf[5]), t, hn::Mul(hn::Set(d, 4.0), cf[4])),
-                                                        t, hn::Mul(hn::Set(d, 3.0), cf[3])),
-                                             t, hn::Add(cf[2], cf[2])),
-                                  t, cf[1]);
-          hn::StoreU(hn::Mul(dv, hn::Load(d, inverse + (k - chunkStart))), d, slopes[kRowDims + e] + k);
-        }
+        if constexpr (Slopes) hn::StoreU(hn::Mul(dv, hn::Load(d, inverse + (k - chunkStart))), d, slopes[kRowDims + e] + k);
       }
     }
     if (chunkEnd == count) break;
