@@ -242,12 +242,16 @@ void kernelTableBench(benchmark::State &state, std::int64_t width, bool slopes) 
   std::vector<double> starts(intervals), ends(intervals), inverse(intervals, double(intervals));
   for (std::size_t j = 0; j < intervals; ++j) starts[j] = double(j) / intervals, ends[j] = double(j + 1) / intervals;
   KernelData coefficients(intervals * 7, padded), in(1, kBatch), out(2 * dims, kBatch); // 6 rows + the tail
+  // Four cells an interval, each with its first interval's end: one read a
+  // lookup, as the engine's tables (RibbonTable, steps ≤ 1) have it.
   std::vector<std::uint32_t> first(4 * intervals);
-  for (std::size_t c = 0; c < first.size(); ++c) first[c] = static_cast<std::uint32_t>(c / 4);
+  std::vector<double> firstEnd(first.size());
+  for (std::size_t c = 0; c < first.size(); ++c)
+    first[c] = static_cast<std::uint32_t>(c / 4), firstEnd[c] = first[c] + 1 < intervals ? ends[first[c]] : INFINITY;
   ck::PolynomialTable table;
   table.dims = dims, table.paddedDims = padded, table.steps = 1, table.intervals = intervals, table.cells = first.size();
   table.starts = starts.data(), table.ends = ends.data(), table.inverseWidths = inverse.data();
-  table.coefficients = coefficients.data.data(), table.cellFirst = first.data();
+  table.coefficients = coefficients.data.data(), table.cellFirst = first.data(), table.cellFirstEnd = firstEnd.data();
   double *values[dims], *derivatives[dims];
   for (std::size_t d = 0; d < dims; ++d) values[d] = out.at(d, kBatch), derivatives[d] = out.at(dims + d, kBatch);
   for (auto _ : state) {
