@@ -829,5 +829,27 @@ TEST(Kernels, GregoryJetsAgreeAcrossWidthsAndWithDualArithmetic) {
         ck::gregoryJets(count, in, corners.data(), span9(out), w.id);
         EXPECT_LE(relativeDifference(out.data, formula), 1e-12) << w.name << " n=" << n << " kind " << kind;
       }
+      // The gradients given in frames turned by a random angle per side and
+      // per corner, the turns given with them (as a plan's arrays come): the
+      // same jets. Turned by θ, (g₁, g₂) = (c ∂u + s ∂v, −s ∂u + c ∂v).
+      std::uniform_real_distribution<double> angle(-3.2, 3.2);
+      Soa turned(4 * n, count);
+      ck::GregoryJetSamples inTurned = in;
+      for (int i = 0; i < n; ++i)
+        for (int which = 0; which < 2; ++which) {
+          const double theta = angle(rng), c = std::cos(theta), t = std::sin(theta);
+          const double *du = which ? in.blendDu[i] : in.sDu[i], *dv = which ? in.blendDv[i] : in.sDv[i];
+          double *g1 = turned[4 * i + 2 * which], *g2 = turned[4 * i + 2 * which + 1];
+          for (size_t k = 0; k < count; ++k) g1[k] = c * du[k] + t * dv[k], g2[k] = -t * du[k] + c * dv[k];
+          double(&turn)[2] = which ? inTurned.blendTurn[i] : inTurned.sideTurn[i];
+          turn[0] = c, turn[1] = t;
+          (which ? inTurned.blendDu[i] : inTurned.sDu[i]) = g1;
+          (which ? inTurned.blendDv[i] : inTurned.sDv[i]) = g2;
+        }
+      for (const auto &w : ck::availableWidths()) {
+        Soa out(9, count);
+        ck::gregoryJets(count, inTurned, corners.data(), span9(out), w.id);
+        EXPECT_LE(relativeDifference(out.data, formula), 1e-12) << w.name << " n=" << n << " kind " << kind << " (turned gradients)";
+      }
     }
 }

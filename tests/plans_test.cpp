@@ -102,9 +102,11 @@ TEST(RegularDomain, AllSidesSweepsInOneBatchMatchTheIndependentSolver) {
 }
 
 TEST(EvaluationPlan, BatchedSidesMatchTheRotation) {
-  // sidesAndBlends (the batched reads, with a shortcut inside a triangle
-  // interior) equals side() and blend() on every member of the rotation
-  // groups and on ranges straddling the spokes and triangle boundaries.
+  // sidesAndBlends (the batched reads: the plan's own arrays on runs that
+  // every rotation keeps consecutive, gathered elsewhere, the gradients in
+  // side 0's frame with their turn) equals side() and blend() on every
+  // member of the rotation groups and on ranges straddling the spokes and
+  // triangle boundaries.
   for (int n = 3; n <= 8; ++n)
     for (const SurfaceOptions &o : schemes()) {
       if (o.scheme == Scheme::CompositeRibbon) continue;
@@ -121,15 +123,21 @@ TEST(EvaluationPlan, BatchedSidesMatchTheRotation) {
         for (int i = 0; i < n; ++i) {
           double *const s[3] = {&data[0], &data[count], &data[2 * count]};
           double *const b[3] = {&data[3 * count], &data[4 * count], &data[5 * count]};
-          plan.sidesAndBlends(i, first, count, s, b);
+          const SideBlendArrays got = plan.sidesAndBlends(i, first, count, s, b);
+          // Where the run is consecutive in every rotation, no copy is made.
+          EXPECT_EQ(got.s[0] == s[0], count > plan.rotationRun(first)) << "n=" << n << " first " << first;
+          auto turned = [](const double *const(&a)[3], const double (&turn)[2], std::size_t k) {
+            return Dual{a[0][k], turn[0] * a[1][k] - turn[1] * a[2][k], turn[1] * a[1][k] + turn[0] * a[2][k]};
+          };
           for (std::size_t k = 0; k < count; ++k) {
             const Dual side = plan.side(i, first + k), blend = plan.blend(i, first + k);
-            ASSERT_EQ(s[0][k], side.v);
-            ASSERT_NEAR(s[1][k], side.du, 1e-14 * (1 + std::abs(side.du)));
-            ASSERT_NEAR(s[2][k], side.dv, 1e-14 * (1 + std::abs(side.dv)));
-            ASSERT_EQ(b[0][k], blend.v);
-            ASSERT_NEAR(b[1][k], blend.du, 1e-14 * (1 + std::abs(blend.du)));
-            ASSERT_NEAR(b[2][k], blend.dv, 1e-14 * (1 + std::abs(blend.dv)));
+            const Dual gotSide = turned(got.s, got.sideTurn, k), gotBlend = turned(got.blend, got.blendTurn, k);
+            ASSERT_EQ(gotSide.v, side.v);
+            ASSERT_NEAR(gotSide.du, side.du, 1e-14 * (1 + std::abs(side.du)));
+            ASSERT_NEAR(gotSide.dv, side.dv, 1e-14 * (1 + std::abs(side.dv)));
+            ASSERT_EQ(gotBlend.v, blend.v);
+            ASSERT_NEAR(gotBlend.du, blend.du, 1e-14 * (1 + std::abs(blend.du)));
+            ASSERT_NEAR(gotBlend.dv, blend.dv, 1e-14 * (1 + std::abs(blend.dv)));
           }
         }
     }

@@ -54,14 +54,23 @@ template <class V> struct CornerParameters {
   DualV<V> s, sp, t, sc, tc;
 };
 
+/// A value and the gradient (g₁, g₂) given in a frame turned by (cos θ,
+/// sin θ) = turn (GregoryJetSamples::sideTurn), with the gradient turned
+/// into the domain's; as it is for (1, 0).
+template <class D, class V = hn::Vec<D>> HWY_INLINE DualV<V> turned(D d, V v, V g1, V g2, const double (&turn)[2]) {
+  if (turn[0] == 1 && turn[1] == 0) return {v, g1, g2};
+  const V c = hn::Set(d, turn[0]), t = hn::Set(d, turn[1]);
+  return {v, hn::MulSub(c, g1, hn::Mul(t, g2)), hn::MulAdd(t, g1, hn::Mul(c, g2))};
+}
+
 template <bool Parabolic, class D>
 HWY_INLINE CornerParameters<hn::Vec<D>> cornerParameters(D d, std::size_t k, const ck::GregoryJetSamples &in, int i,
                                                          int prev) {
   using V = hn::Vec<D>;
   auto load = [&](const double *p) { return hn::LoadU(d, p + k); };
   CornerParameters<V> p;
-  p.s = {load(in.values.s[i]), load(in.sDu[i]), load(in.sDv[i])};
-  p.sp = {load(in.values.s[prev]), load(in.sDu[prev]), load(in.sDv[prev])};
+  p.s = turned(d, load(in.values.s[i]), load(in.sDu[i]), load(in.sDv[i]), in.sideTurn[i]);
+  p.sp = turned(d, load(in.values.s[prev]), load(in.sDu[prev]), load(in.sDv[prev]), in.sideTurn[prev]);
   p.t = {hn::Sub(hn::Set(d, 1.0), p.sp.v), hn::Neg(p.sp.u), hn::Neg(p.sp.w)};
   p.sc = p.s, p.tc = p.t;
   if constexpr (Parabolic) {
@@ -269,8 +278,8 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
     } else {
       subtractG1Correction(d, p, a.corners[i], mu, term);
     }
-    const DualV<V> blend{hn::LoadU(d, in.values.blend[i] + k), hn::LoadU(d, in.blendDu[i] + k),
-                         hn::LoadU(d, in.blendDv[i] + k)};
+    const DualV<V> blend = turned(d, hn::LoadU(d, in.values.blend[i] + k), hn::LoadU(d, in.blendDu[i] + k),
+                                  hn::LoadU(d, in.blendDv[i] + k), in.blendTurn[i]);
     for (int c = 0; c < 3; ++c) {
       acc[0][c] = hn::MulAdd(blend.v, term[0][c], acc[0][c]);
       acc[1][c] = hn::MulAdd(blend.u, term[0][c], hn::MulAdd(blend.v, term[1][c], acc[1][c]));

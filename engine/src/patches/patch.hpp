@@ -216,10 +216,12 @@ private:
   /// parabolic jet there (value and gradient), as the kernels compute it in
   /// the batched paths.
   DualVec3 gregoryG2From(const Dual *side, const Dual *blend, const ParabolicJet *jet) const;
-  /// Fills side i's parameter and corner i's blend with their gradients
-  /// (value, ∂/∂u, ∂/∂v arrays) for samples [first, first + count).
-  using SideBlendSource = std::function<void(int i, std::size_t first, std::size_t count, double *const s[3],
-                                             double *const blend[3])>;
+  /// Side i's parameter and corner i's blend with their gradients (value,
+  /// ∂/∂u, ∂/∂v arrays) for samples [first, first + count): written into the
+  /// arrays s, blend it is given, or where the source holds them, each with
+  /// the turn of its gradients (SideBlendArrays).
+  using SideBlendSource = std::function<SideBlendArrays(int i, std::size_t first, std::size_t count,
+                                                        double *const s[3], double *const blend[3])>;
   /// The Gregory formula with derivatives from every side's parameter and
   /// corner blend: ribbons from the tables or exactly, then the kernel, in
   /// blocks small enough for their arrays to stay in the fast caches.

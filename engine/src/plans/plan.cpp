@@ -233,57 +233,30 @@ std::size_t EvaluationPlan::rotationRun(std::size_t k) const {
   return interiorBase_ + ((k - interiorBase_) / perTriangle_ + 1) * perTriangle_ - k;
 }
 
-namespace {
-/// (v, du, dv) with the gradient turned by (cos, sin) = (c, t), into
-/// (ov, ou, ow). Restrict-qualified parameters (GCC ignores the qualifier on
-/// locals): without them the loop needs more alias checks than GCC versions
-/// for and stays scalar. Not split into a memcpy of the values and a loop
-/// over the gradients (two passes, and a call per block).
-__attribute__((optimize("no-tree-loop-distribute-patterns"))) void turnArrays(std::size_t count, double c, double t, const double *__restrict v, const double *__restrict du,
-                const double *__restrict dv, double *__restrict ov, double *__restrict ou, double *__restrict ow) {
-  for (std::size_t k = 0; k < count; ++k) ov[k] = v[k], ou[k] = c * du[k] - t * dv[k], ow[k] = t * du[k] + c * dv[k];
-}
-} // namespace
-
-void EvaluationPlan::sidesAndBlends(int i, std::size_t first, std::size_t count, double *const s[3],
-                                    double *const blend[3]) const {
-  // Locals throughout: the output arrays could alias the plan's members as
-  // far as the compiler knows, which would reload every member per sample.
+SideBlendArrays EvaluationPlan::sidesAndBlends(int i, std::size_t first, std::size_t count, double *const s[3],
+                                               double *const blend[3]) const {
   CURVENET_CHECK(soa_, "sidesAndBlends on a composite-ribbon plan");
-  const double c = cos_[i], t = sin_[i];
-  const std::uint32_t *from = rotation_.data() + static_cast<std::size_t>(i) * size() + first;
-  const double *sideV = sideValues_.data(), *sideU = sideDu_.data(), *sideW = sideDv_.data();
-  const double *blendV = blendValues_.data(), *blendU = blendDu_.data(), *blendW = blendDv_.data();
-  double *sv = s[0], *su = s[1], *sw = s[2], *bv = blend[0], *bu = blend[1], *bw = blend[2];
-  // Within one centre–side triangle interior the rotation is a shift by
-  // whole triangles (the constructor's layout): plain loads of consecutive
-  // samples, which the compiler vectorizes, and no reads of rotation_.
-  const int n = key_.sides;
-  const std::size_t interiorBase = interiorBase_, perTriangle = perTriangle_;
-  const bool interior = first >= interiorBase && perTriangle > 0;
-  const std::size_t triangle = interior ? (first - interiorBase) / perTriangle : 0;
-  if (interior && first + count <= interiorBase + (triangle + 1) * perTriangle) {
-    const std::size_t local = first - interiorBase - triangle * perTriangle;
-    const std::size_t rotated = interiorBase + ((triangle + n - i) % n) * perTriangle + local;
-    const std::size_t x = perSide_ ? static_cast<std::size_t>(i) * size() + first : rotated;
-    const double cs = perSide_ ? 1.0 : c, ts = perSide_ ? 0.0 : t;
-    turnArrays(count, cs, ts, sideV + x, sideU + x, sideW + x, sv, su, sw);
-    turnArrays(count, c, t, blendV + rotated, blendU + rotated, blendW + rotated, bv, bu, bw);
-    return;
-  }
-  if (perSide_) {
-    const std::size_t own = static_cast<std::size_t>(i) * size() + first;
-    turnArrays(count, 1.0, 0.0, sideV + own, sideU + own, sideW + own, sv, su, sw);
-  } else {
-    for (std::size_t k = 0; k < count; ++k) {
-      const std::uint32_t j = from[k];
-      sv[k] = sideV[j], su[k] = c * sideU[j] - t * sideW[j], sw[k] = t * sideU[j] + c * sideW[j];
-    }
+  SideBlendArrays out;
+  // Every side's own parameters (perSide_) are in the domain's frame; side
+  // 0's, read for side i, and corner 0's blends are turned by side i's angle.
+  out.sideTurn[0] = perSide_ ? 1.0 : cos_[i], out.sideTurn[1] = perSide_ ? 0.0 : sin_[i];
+  out.blendTurn[0] = cos_[i], out.blendTurn[1] = sin_[i];
+  auto sideAt = [&](std::size_t k) { return perSide_ ? static_cast<std::size_t>(i) * size() + k : rotated(i, k); };
+  if (count <= rotationRun(first)) {
+    // The run's samples are consecutive in every rotation: the plan's own arrays.
+    const std::size_t side = sideAt(first), corner = rotated(i, first);
+    out.s[0] = sideValues_.data() + side, out.s[1] = sideDu_.data() + side, out.s[2] = sideDv_.data() + side;
+    out.blend[0] = blendValues_.data() + corner, out.blend[1] = blendDu_.data() + corner;
+    out.blend[2] = blendDv_.data() + corner;
+    return out;
   }
   for (std::size_t k = 0; k < count; ++k) {
-    const std::uint32_t j = from[k];
-    bv[k] = blendV[j], bu[k] = c * blendU[j] - t * blendW[j], bw[k] = t * blendU[j] + c * blendW[j];
+    const std::size_t j = sideAt(first + k), c = rotated(i, first + k);
+    s[0][k] = sideValues_[j], s[1][k] = sideDu_[j], s[2][k] = sideDv_[j];
+    blend[0][k] = blendValues_[c], blend[1][k] = blendDu_[c], blend[2][k] = blendDv_[c];
   }
+  for (int c = 0; c < 3; ++c) out.s[c] = s[c], out.blend[c] = blend[c];
+  return out;
 }
 
 std::vector<EvaluationPlan::Group> EvaluationPlan::groups(std::size_t maxCount) const {

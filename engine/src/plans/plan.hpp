@@ -30,6 +30,15 @@ struct PlanKey {
   friend auto operator<=>(const PlanKey &, const PlanKey &) = default;
 };
 
+/// Side i's parameter and corner i's blend over a run of samples: value,
+/// ∂/∂u, ∂/∂v arrays, their gradients given in a frame turned from the
+/// domain's by (cos, sin) = sideTurn, blendTurn (the turns of
+/// kernels::GregoryJetSamples, which the jet kernel applies).
+struct SideBlendArrays {
+  const double *s[3] = {}, *blend[3] = {};
+  double sideTurn[2] = {1, 0}, blendTurn[2] = {1, 0};
+};
+
 class EvaluationPlan {
 public:
   /// Builds the plan (parallel over samples; cost O(n r²) sweep solves).
@@ -76,9 +85,14 @@ public:
   /// Gregory: corner i's normalized blend B_{i,i−1}; composite-ribbon: the
   /// normalized corner product D_{i,i−1} / Σ_j D_{j,j−1}.
   Dual blend(int i, std::size_t k) const { return turn(i, storedBlend(rotated(i, k))); }
-  /// side(i, k) and blend(i, k) for k in [first, first + count) as arrays:
-  /// value, ∂/∂u, ∂/∂v of each into s[0 .. 2][j], blend[0 .. 2][j], j = k − first.
-  void sidesAndBlends(int i, std::size_t first, std::size_t count, double *const s[3], double *const blend[3]) const;
+  /// side(i, k) and blend(i, k) for k in [first, first + count) as arrays
+  /// of value, ∂/∂u, ∂/∂v, their gradients in side 0's frame with the turn
+  /// (cos, sin) that brings them into the domain's (SideBlendArrays). A run
+  /// that every rotation maps to consecutive samples (rotationRun) is read
+  /// where the plan holds it; any other is gathered into s[0 .. 2][j],
+  /// blend[0 .. 2][j], j = k − first.
+  SideBlendArrays sidesAndBlends(int i, std::size_t first, std::size_t count, double *const s[3],
+                                 double *const blend[3]) const;
 
   /// The tessellator's boundary rows of a uniform layout: every side's
   /// parameter and every corner's blend with their gradients at the samples

@@ -16,6 +16,7 @@ void Patch::evaluatePlannedBoundary(const EvaluationPlan &plan, int i, const std
       count,
       [&](int k, std::size_t block, std::size_t m, double *const s[3], double *const b[3]) {
         plan.boundarySidesAndBlends(i, k, j + block, m, s, b);
+        return SideBlendArrays{{s[0], s[1], s[2]}, {b[0], b[1], b[2]}};
       },
       plan.key().resolution >= kTableResolution, out);
 }

@@ -549,7 +549,7 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
   gregoryJetsFrom(
       count,
       [&](int i, std::size_t block, std::size_t m, double *const s[3], double *const b[3]) {
-        plan.sidesAndBlends(i, first + block, m, s, b);
+        return plan.sidesAndBlends(i, first + block, m, s, b);
       },
       plan.key().resolution >= kTableResolution, out);
 }
@@ -577,7 +577,7 @@ void Patch::evaluatePlanned(const EvaluationPlan &plan, std::size_t first, std::
   gregoryJetsFrom(
       count,
       [&](int i, std::size_t block, std::size_t m, double *const s[3], double *const b[3]) {
-        plan.sidesAndBlends(i, first + block, m, s, b);
+        return plan.sidesAndBlends(i, first + block, m, s, b);
       },
       plan.key().resolution >= kTableResolution, out);
 }
@@ -605,12 +605,14 @@ void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bo
   for (std::size_t first = 0; first < count; first += kBlock) {
     const std::size_t m = std::min(kBlock, count - first);
     scratch.reset(m, static_cast<std::size_t>(n) * (6 + jetArrays) + 10);
-    std::array<DualArray, kMaxSides> side, blend;
+    std::array<SideBlendArrays, kMaxSides> given; // where the source put side i's and corner i's arrays
     std::array<JetArrays, kMaxSides> jets;
     for (int i = 0; i < n; ++i) {
-      side[i].take(scratch), blend[i].take(scratch);
-      double *const s[3] = {side[i].v, side[i].du, side[i].dv}, *const b[3] = {blend[i].v, blend[i].du, blend[i].dv};
-      source(i, first, m, s, b);
+      DualArray sideBuffer, blendBuffer; // for a source that writes its arrays
+      sideBuffer.take(scratch), blendBuffer.take(scratch);
+      double *const s[3] = {sideBuffer.v, sideBuffer.du, sideBuffer.dv};
+      double *const b[3] = {blendBuffer.v, blendBuffer.du, blendBuffer.dv};
+      given[i] = source(i, first, m, s, b);
       jets[i].P.take(scratch), jets[i].dP.take(scratch), jets[i].T.take(scratch), jets[i].dT.take(scratch);
       if (g2) jets[i].C.take(scratch), jets[i].dC.take(scratch);
     }
@@ -628,9 +630,9 @@ void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bo
       // ribbons), where a parameter at a break takes its left piece.
       std::span<const double> parameters;
       if (tables && ribbons_[i].pieces().size() == 1) {
-        parameters = {side[i].v, m};
+        parameters = {given[i].s[0], m};
       } else {
-        for (std::size_t k = 0; k < m; ++k) at[k] = ribbons_[i].snap(std::clamp(side[i].v[k], 0.0, 1.0));
+        for (std::size_t k = 0; k < m; ++k) at[k] = ribbons_[i].snap(std::clamp(given[i].s[0][k], 0.0, 1.0));
         parameters = {at, m};
       }
       if (tables) {
@@ -665,8 +667,11 @@ void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bo
     if (g2)
       for (int i = 0; i < n; ++i) in.values.reach[i] = crossReach_[i];
     for (int i = 0; i < n; ++i) {
-      in.values.s[i] = side[i].v, in.sDu[i] = side[i].du, in.sDv[i] = side[i].dv;
-      in.values.blend[i] = blend[i].v, in.blendDu[i] = blend[i].du, in.blendDv[i] = blend[i].dv;
+      const SideBlendArrays &g = given[i];
+      in.values.s[i] = g.s[0], in.sDu[i] = g.s[1], in.sDv[i] = g.s[2];
+      in.values.blend[i] = g.blend[0], in.blendDu[i] = g.blend[1], in.blendDv[i] = g.blend[2];
+      in.sideTurn[i][0] = g.sideTurn[0], in.sideTurn[i][1] = g.sideTurn[1];
+      in.blendTurn[i][0] = g.blendTurn[0], in.blendTurn[i][1] = g.blendTurn[1];
       for (int c = 0; c < 3; ++c) {
         in.values.P[i][c] = jets[i].P.c[c], in.values.T[i][c] = jets[i].T.c[c];
         in.dP[i][c] = jets[i].dP.c[c], in.dT[i][c] = jets[i].dT.c[c];
@@ -691,6 +696,7 @@ void Patch::gregoryJetsFrom(std::size_t count, const Dual *sides, const Dual *bl
           const Dual x = sides[i * count + first + k], y = blends[i * count + first + k];
           s[0][k] = x.v, s[1][k] = x.du, s[2][k] = x.dv, b[0][k] = y.v, b[1][k] = y.du, b[2][k] = y.dv;
         }
+        return SideBlendArrays{{s[0], s[1], s[2]}, {b[0], b[1], b[2]}};
       },
       useTables, out);
 }
@@ -819,11 +825,11 @@ void Patch::evaluateJets(std::size_t count, const double *u, const double *v, Du
     kernels::cornerBlends(m, sides, g2 ? 3 : 2, fy.data(), blend[0].data(), blend[1].data(), blend[2].data());
     gregoryJetsFrom(
         m,
-        [&](int i, std::size_t block, std::size_t size, double *const s[3], double *const b[3]) {
-          for (int c = 0; c < 3; ++c) {
-            std::copy_n(columns.side(i, c) + block, size, s[c]);
-            std::copy_n(columns.blend(i, c) + block, size, b[c]);
-          }
+        [&](int i, std::size_t block, std::size_t, double *const *, double *const *) {
+          // The columns themselves: no copy.
+          SideBlendArrays arrays;
+          for (int c = 0; c < 3; ++c) arrays.s[c] = columns.side(i, c) + block, arrays.blend[c] = columns.blend(i, c) + block;
+          return arrays;
         },
         true, out + first);
   }

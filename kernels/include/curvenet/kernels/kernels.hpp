@@ -203,6 +203,15 @@ struct GregoryJetSamples {
   const double *blendDu[GregorySamples::kMaxSides] = {}, *blendDv[GregorySamples::kMaxSides] = {};
   const double *dP[GregorySamples::kMaxSides][3] = {}, *dT[GregorySamples::kMaxSides][3] = {},
                *dC[GregorySamples::kMaxSides][3] = {};
+  /// Side i's parameter gradient (sDu, sDv) and corner i's blend gradient
+  /// (blendDu, blendDv) may be given in a frame turned from the domain's by
+  /// (cos θ, sin θ): the kernel turns them back, ∂/∂u = c g₁ − s g₂,
+  /// ∂/∂v = s g₁ + c g₂. A plan stores one side's data for all the sides a
+  /// rotation of the domain maps onto it, so its arrays are read as they are.
+  /// (1, 0), the default: the gradients are the domain's.
+  double sideTurn[GregorySamples::kMaxSides][2] = {{1, 0}, {1, 0}, {1, 0}, {1, 0}, {1, 0}, {1, 0}, {1, 0}, {1, 0}};
+  double blendTurn[GregorySamples::kMaxSides][2] = {{1, 0}, {1, 0}, {1, 0}, {1, 0}, {1, 0}, {1, 0}, {1, 0}, {1, 0}};
+  static_assert(GregorySamples::kMaxSides == 8, "one turn of (1, 0) per side in the turns' initializers");
 };
 
 /// (b) gregoryPositions with exact first derivatives: the point into out.v,
