@@ -561,6 +561,17 @@ TEST(Kernels, TableEvaluationAgreesAcrossWidthsAndWithHorner) {
         for (int d = 0; d < dims; ++d) v[d] = alone[d];
         ck::evaluateTable(kCount, table, s.data(), v.data(), nullptr, w.id);
         EXPECT_EQ(alone.data, values.data) << w.name << " dims " << dims << " in rows of " << padded << ", cells " << cells << " (values alone)";
+        // The AVX-512 eight-lane path and the four-lane one: the same bits,
+        // whichever this CPU takes by default (eightLaneTables).
+        for (const bool eight : {false, true}) {
+          ck::setEightLaneTables(eight);
+          Soa other(dims, kCount), otherSlopes(dims, kCount);
+          for (int d = 0; d < dims; ++d) v[d] = other[d], sl[d] = otherSlopes[d];
+          ck::evaluateTable(kCount, table, s.data(), v.data(), sl.data(), w.id);
+          EXPECT_EQ(other.data, values.data) << w.name << (eight ? " eight" : " four") << " lanes, dims " << dims;
+          EXPECT_EQ(otherSlopes.data, slopes.data) << w.name << (eight ? " eight" : " four") << " lanes, dims " << dims;
+        }
+        ck::setEightLaneTables(std::nullopt);
       }
     }
   }

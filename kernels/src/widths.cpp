@@ -7,8 +7,10 @@
 #include <hwy/foreach_target.h> // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,10 +32,14 @@ HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
 #include <hwy/targets.h>
+#if HWY_ARCH_X86 && (defined(__GNUC__) || defined(__clang__))
+#include <cpuid.h>
+#endif
 
 namespace curvenet {
 namespace kernels_impl {
 HWY_EXPORT(Lanes);
+
 
 /// Index into the dispatch tables: the best target, the baseline for the
 /// scalar reference (its width-1 instance), or the one requested
@@ -63,6 +69,37 @@ std::vector<Width> availableWidths() {
     widths.push_back({target, hwy::TargetName(target), lanes});
   }
   return widths;
+}
+
+namespace {
+/// Whether this CPU runs a 512-bit vector as two 256-bit halves: AMD family
+/// 19h is Zen 3 (no AVX-512, so it never reaches the eight-lane path) and
+/// Zen 4; Zen 5 (1Ah) has full-width 512-bit units.
+bool splitsWideVectors() {
+#if HWY_ARCH_X86 && (defined(__GNUC__) || defined(__clang__))
+  unsigned eax, ebx, ecx, edx;
+  if (!__get_cpuid(0, &eax, &ebx, &ecx, &edx)) return false;
+  const bool amd = ebx == 0x68747541 && edx == 0x69746e65 && ecx == 0x444d4163; // "AuthenticAMD"
+  if (!amd || !__get_cpuid(1, &eax, &ebx, &ecx, &edx)) return false;
+  const unsigned base = (eax >> 8) & 0xf, family = base == 0xf ? base + ((eax >> 20) & 0xff) : base;
+  return family == 0x19;
+#else
+  return false;
+#endif
+}
+
+/// setEightLaneTables' choice: −1 the CPU's, else 0 or 1.
+std::atomic<int> eightLaneOverride{-1};
+} // namespace
+
+bool eightLaneTables() {
+  static const bool cpuChoice = !splitsWideVectors();
+  const int chosen = eightLaneOverride.load(std::memory_order_relaxed);
+  return chosen < 0 ? cpuChoice : chosen == 1;
+}
+
+void setEightLaneTables(std::optional<bool> eightLanes) {
+  eightLaneOverride.store(eightLanes ? int(*eightLanes) : -1, std::memory_order_relaxed);
 }
 
 Width bestWidth() {

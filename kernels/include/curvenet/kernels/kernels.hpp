@@ -22,6 +22,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <new>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,15 @@ constexpr std::int64_t kScalarReference = -1;
 std::vector<Width> availableWidths();
 /// The width kBestWidth resolves to on this CPU.
 Width bestWidth();
+
+/// Whether evaluateTable takes its eight-lane AVX-512 path (eight samples
+/// transposed at a time) for the engine's layouts, or the four-lane one. By
+/// default eight lanes except on CPUs that run a 512-bit vector as two
+/// 256-bit halves (Zen 4), where the transposes cost more than they save.
+/// Both paths give the same bits; setEightLaneTables overrides the choice
+/// (std::nullopt: back to the CPU's), for tests and benchmarks. Thread-safe.
+bool eightLaneTables();
+void setEightLaneTables(std::optional<bool> eightLanes);
 
 /// Allocator of cache-line (64-byte) aligned storage for kernel arrays.
 template <class T> struct CacheLineAllocator {
