@@ -19,10 +19,6 @@
 #include "curvenet/kernels/kernels.hpp"
 #include "dispatch.hpp"
 
-#ifndef CURVENET_PLAIN_STEPS
-#define CURVENET_PLAIN_STEPS 4
-#endif
-
 // Argument bundles, shared by every target's instance (defined once).
 #ifndef CURVENET_SWEEP_ARGS
 #define CURVENET_SWEEP_ARGS

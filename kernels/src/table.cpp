@@ -367,10 +367,10 @@ void EvaluateTable(std::size_t count, const TableArgs &args, bool reference) {
   const ck::PolynomialTable &tb = *args.table;
   const hn::CappedTag<double, 8> d8;
   std::size_t done = 0;
-  if (!ck::eightLaneTables()) {
-  } else if (tb.paddedDims == 8 && tb.rowDims() == 8 && tb.tailDims() == 1)
+  const bool eightLanes = ck::eightLaneTables();
+  if (eightLanes && tb.paddedDims == 8 && tb.rowDims() == 8 && tb.tailDims() == 1)
     done = args.slopes ? evaluateTableEights<true, 8, 1>(d8, count, args) : evaluateTableEights<false, 8, 1>(d8, count, args);
-  else if (tb.paddedDims == 8 && tb.rowDims() == 6 && tb.tailDims() == 0)
+  else if (eightLanes && tb.paddedDims == 8 && tb.rowDims() == 6 && tb.tailDims() == 0)
     done = args.slopes ? evaluateTableEights<true, 6, 0>(d8, count, args) : evaluateTableEights<false, 6, 0>(d8, count, args);
   if (done > 0) {
     if (done == count) return;

@@ -40,7 +40,6 @@ namespace curvenet {
 namespace kernels_impl {
 HWY_EXPORT(Lanes);
 
-
 /// Index into the dispatch tables: the best target, the baseline for the
 /// scalar reference (its width-1 instance), or the one requested
 /// (dispatch.hpp: the other kernel sources dispatch through it too).
