@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 #include <cstring>
+#include <numbers>
 #include <random>
 #include <stdexcept>
 #include <thread>
@@ -143,9 +145,29 @@ TEST(EvaluationPlan, BatchedSidesMatchTheRotation) {
     }
 }
 
+TEST(EvaluationPlan, RotatedSampleIsTheSampleTurnedBackBySideAngle) {
+  // Side i's data at sample k are side 0's at rotated(i, k): the domain
+  // point that the turn taking side 0 onto side i maps to sample k. Checked
+  // against the sample positions themselves, not the layout's arithmetic.
+  for (int n = 3; n <= 8; ++n)
+    for (int r : {1, 2, 3, 4, 11}) {
+      const EvaluationPlan plan(planKey({Scheme::GregoryG2}, n, r));
+      for (int i = 0; i < n; ++i) {
+        const double angle = 2 * std::numbers::pi * i / n, c = std::cos(angle), s = std::sin(angle);
+        for (std::size_t k = 0; k < plan.size(); ++k) {
+          const std::size_t j = plan.rotated(i, k);
+          ASSERT_LT(j, plan.size()) << "n=" << n << " r=" << r << " i=" << i << " k=" << k;
+          const Vec2 p = plan.samples()[j], q = plan.samples()[k];
+          ASSERT_NEAR(c * p.x - s * p.y, q.x, 1e-12) << "n=" << n << " r=" << r << " i=" << i << " k=" << k;
+          ASSERT_NEAR(s * p.x + c * p.y, q.y, 1e-12) << "n=" << n << " r=" << r << " i=" << i << " k=" << k;
+        }
+      }
+    }
+}
+
 TEST(EvaluationPlan, GroupsCoverEverySampleOnceAndRotateMemberOntoMember) {
   // Side i's data on member m of a group are side 0's on member m − i at
-  // the same offsets: the rotation table says so for every sample.
+  // the same offsets: rotated() says so for every sample.
   for (int n = 3; n <= 8; ++n)
     for (int r : {1, 2, 3, 11}) {
       const EvaluationPlan plan(planKey({Scheme::GregoryG2}, n, r));

@@ -51,15 +51,14 @@ void EvaluationPlan::placeSamples(const RegularDomain &domain) {
   const int n = key_.sides, r = key_.resolution;
   const std::size_t count = faceInteriorCount(n, r);
   samples_.resize(count);
-  rotation_.resize(static_cast<std::size_t>(n) * count);
   // The tessellator's pattern (tessellate.cpp), with the same arithmetic so
   // that the sample positions are the same doubles.
   perTriangle_ = static_cast<std::size_t>((r - 1) * (r - 2) / 2);
   interiorBase_ = 1 + static_cast<std::size_t>(n) * (r - 1);
+  spokeLength_ = static_cast<std::size_t>(std::max(r - 1, 1)); // rotated() divides by it
   const std::size_t perTriangle = perTriangle_, interiorBase = interiorBase_;
   auto spoke = [&](int i, int k) { return 1 + static_cast<std::size_t>(((i % n + n) % n) * (r - 1) + (k - 1)); };
   samples_[0] = {0, 0};
-  for (int i = 0; i < n; ++i) rotation_[static_cast<std::size_t>(i) * count] = 0;
   for (int t = 0; t < n; ++t) {
     const Vec2 p0 = domain.corner(t), p1 = domain.corner(t + 1);
     std::size_t local = 0;
@@ -68,18 +67,8 @@ void EvaluationPlan::placeSamples(const RegularDomain &domain) {
       const int m = r - k;
       for (int j = 0; j < m; ++j) {
         const Vec2 uv = a + (b - a) * (double(j) / m);
-        if (j == 0) {
-          samples_[spoke(t, k)] = uv;
-          for (int i = 0; i < n; ++i) rotation_[static_cast<std::size_t>(i) * count + spoke(t, k)] =
-              static_cast<std::uint32_t>(spoke(t - i, k));
-        } else {
-          const std::size_t id = interiorBase + t * perTriangle + local;
-          samples_[id] = uv;
-          for (int i = 0; i < n; ++i)
-            rotation_[static_cast<std::size_t>(i) * count + id] =
-                static_cast<std::uint32_t>(interiorBase + ((t - i + n) % n) * perTriangle + local);
-          ++local;
-        }
+        if (j == 0) samples_[spoke(t, k)] = uv;
+        else samples_[interiorBase + t * perTriangle + local++] = uv;
       }
     }
   }
@@ -274,7 +263,6 @@ std::vector<EvaluationPlan::Group> EvaluationPlan::groups(std::size_t maxCount) 
 
 std::size_t EvaluationPlan::memory() const {
   return samples_.size() * sizeof(Vec2) + (s_.size() + d_.size() + b_.size() + boundary_.size()) * sizeof(Dual) +
-         rotation_.size() * sizeof(std::uint32_t) +
          (sideValues_.size() + blendValues_.size() + sideDu_.size() + sideDv_.size() + blendDu_.size() +
           blendDv_.size()) *
              sizeof(double);

@@ -376,9 +376,8 @@ void Patch::evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPla
   thread_local kernels::AlignedVector<double> weights;
   weights.resize(static_cast<std::size_t>(members) * kWeights * kWeightStride);
   auto memberWeights = [&](int m) { return weights.data() + static_cast<std::size_t>(m) * kWeights * kWeightStride; };
-  // Side i's (corner i's) data on member m: side 0's on member m − i, read
-  // by the group's arithmetic (Group::source) rather than the plan's
-  // rotation table.
+  // Side i's (corner i's) data on member m: side 0's on member m − i
+  // (Group::source).
   std::array<const double *, kMaxSides> side, blend, cornerWeights;
   for (std::size_t offset = 0; offset < group.count; offset += kPositionBlock) {
     const std::size_t count = std::min(kPositionBlock, group.count - offset);
