@@ -218,9 +218,13 @@ HWY_INLINE void sweepNewton(D d, const ck::SweepFrame &f, const V (&x)[G], const
                             const V (&F1)[G][5], V (&r)[G], SweepMask<D> (&converged)[G]) {
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
   constexpr int kIterations = 16;
-  // Three plain steps: the sweep kernel 9-10 % faster than none (two: 9 %,
-  // four: 5 %; engine_bench KernelHermiteSweep, AVX-512, alternating runs).
-  constexpr int kPlainSteps = 3;
+  // Four plain steps: after them one guarded step certifies almost every
+  // lane at arbitrary points of the pentagon and of cagd86.lop, where after
+  // three a lane of the four vectors mostly needed a second (a guarded step
+  // costs about three plain ones). Batch positions 3-6 % faster than with
+  // three on Zen 4 (engine_bench BatchPositions, alternating runs); three
+  // had measured best on the kernel's own grid of points on Intel.
+  constexpr int kPlainSteps = 4;
   const V stepLimit = hn::Set(d, 1e-15), half = hn::Set(d, 0.5);
   // The radial sweep is the Hermite sweep's first-order approximation: few
   // steps. The bracket [lo, hi] keeps the sign change of F (a certified
