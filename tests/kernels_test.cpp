@@ -432,6 +432,49 @@ TEST(Kernels, GregoryPositionsAgreeAcrossWidthsAndWithTheFormula) {
     }
 }
 
+TEST(Kernels, SaturatedCrossIsReachTimesTanhAndAgreesAcrossWidths) {
+  // r tanh(x / r) against std::tanh in long double to a few units in the
+  // last place over the arguments a patch meets (sides' parameters and past
+  // them), its slope 1 − tanh² to 1e-15, at every width; exact where it
+  // must be (0 at 0, r and slope 0 beyond saturation, odd).
+  std::vector<double> x;
+  for (int k = -4000; k <= 4000; ++k) x.push_back(k / 2000.0);  // [−2, 2], 1/2000 apart
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> wide(-3.0, 3.0);
+  for (int k = 0; k < 4000; ++k) x.push_back(wide(rng));
+  for (double tiny : {1e-300, 1e-20, 1e-9, 4e-5}) x.push_back(tiny), x.push_back(-tiny);
+  const std::size_t count = x.size();
+  for (double reach : {0.05, 0.1, 0.3, 0.73, 0.999}) {
+    std::vector<double> referenceValue(count), referenceSlope(count);
+    ck::saturatedCross(count, x.data(), reach, referenceValue.data(), referenceSlope.data(), ck::kScalarReference);
+    for (const auto &w : ck::availableWidths()) {
+      std::vector<double> value(count), slope(count);
+      ck::saturatedCross(count, x.data(), reach, value.data(), slope.data(), w.id);
+      for (std::size_t k = 0; k < count; ++k) {
+        // Targets without fused multiply-adds round differently: units in the last place apart.
+        ASSERT_NEAR(value[k], referenceValue[k], 4 * 2.220446049250313e-16 * std::abs(referenceValue[k]))
+            << w.name << " reach " << reach << " x " << x[k];
+        ASSERT_NEAR(slope[k], referenceSlope[k], 1e-15) << w.name << " reach " << reach << " x " << x[k];
+        const long double th = std::tanh(static_cast<long double>(x[k] * (1.0 / reach)));
+        const double expected = static_cast<double>(reach * th);
+        ASSERT_NEAR(value[k], expected, 4 * 2.220446049250313e-16 * std::abs(expected))
+            << w.name << " reach " << reach << " x " << x[k];
+        ASSERT_NEAR(slope[k], static_cast<double>(1 - th * th), 1e-15) << w.name << " reach " << reach << " x " << x[k];
+      }
+    }
+    const double special[] = {0.0, 25 * reach, -25 * reach, 1e3, NAN};
+    double value[5], slope[5];
+    ck::saturatedCross(5, special, reach, value, slope);
+    EXPECT_EQ(value[0], 0.0);
+    EXPECT_EQ(slope[0], 1.0);
+    EXPECT_EQ(value[1], reach);
+    EXPECT_EQ(value[2], -reach);
+    EXPECT_EQ(slope[1], 0.0);
+    EXPECT_EQ(value[3], reach);
+    EXPECT_TRUE(std::isnan(value[4]));
+  }
+}
+
 TEST(Kernels, SharedG2CornerWeightsGiveTheSamePositions) {
   // gregoryCornerWeights against the weights' definition (plain divisions in
   // long double, 0 at the corner itself), across widths; gregoryPositions

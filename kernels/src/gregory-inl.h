@@ -119,11 +119,47 @@ HWY_INLINE V sideBlendWeight(D d, V s, V t, V *bySide = nullptr, V *across = nul
   return hn::IfThenElse(atCorner, hn::Set(d, 0.5), hn::Mul(tm, inverse));
 }
 
+/// tanh z within a few units in the last place (kernels_test holds it to
+/// std::tanh), exactly 0 at 0 and 1 beyond 20 (where tanh rounds to 1),
+/// odd, NaN for NaN: tanh |z| = E / (E + 2) with E = e^{2|z|} − 1, from
+/// e^f − 1 by its Taylor series on |f| ≤ ln 2 / 2 (13 terms, the rest
+/// below 1e-17 relative) and 2^k built from k's bits. Highway's Tanh cost
+/// a quarter of a G² patch's face interiors where ribbons saturate (every
+/// patch of the real networks tried): its conversions between 64- and
+/// 32-bit integers cross lanes, and its range reduction allows any
+/// argument where this one needs |z| ≤ 20.
+template <class D, class V> HWY_INLINE V tanhOf(D d, V z) {
+  const hn::RebindToSigned<D> di;
+  const V sign = hn::And(hn::SignBit(d), z);
+  const V limit = hn::Set(d, 20.0), a = hn::Xor(z, sign);
+  const V clamped = hn::IfThenElse(hn::Gt(a, limit), limit, a), y = hn::Add(clamped, clamped);
+  // k = round(y / ln 2) ∈ [0, 58] in the low bits of t (1.5 · 2^52 added:
+  // the sum's unit in the last place is 1), f = y − k ln 2 with ln 2 split
+  // so that k ln2Hi is exact.
+  const V magic = hn::Set(d, 6755399441055744.0);
+  const V t = hn::MulAdd(y, hn::Set(d, 1.4426950408889634), magic), k = hn::Sub(t, magic);
+  const V f = hn::MulAdd(k, hn::Set(d, -1.90821492927058770002e-10), hn::MulAdd(k, hn::Set(d, -6.93147180369123816490e-01), y));
+  // e^f − 1 = f + f² Σ_{n=0}^{11} f^n / (n + 2)!, Estrin's scheme.
+  auto c = [&](double factorial) { return hn::Set(d, 1.0 / factorial); };
+  const V f2 = hn::Mul(f, f), f4 = hn::Mul(f2, f2), f8 = hn::Mul(f4, f4);
+  const V p0 = hn::MulAdd(c(6), f, c(2)), p2 = hn::MulAdd(c(120), f, c(24)), p4 = hn::MulAdd(c(5040), f, c(720));
+  const V p6 = hn::MulAdd(c(362880), f, c(40320)), p8 = hn::MulAdd(c(39916800), f, c(3628800));
+  const V p10 = hn::MulAdd(c(6227020800.0), f, c(479001600));
+  const V low = hn::MulAdd(hn::MulAdd(p6, f2, p4), f4, hn::MulAdd(p2, f2, p0));
+  const V high = hn::MulAdd(p10, f2, p8);
+  const V q = hn::MulAdd(f2, hn::MulAdd(high, f8, low), f);
+  // 2^k from k's bits: (k + 1023) << 52; E = 2^k (q + 1) − 1.
+  const auto kBits = hn::Sub(hn::BitCast(di, t), hn::BitCast(di, magic));
+  const V scale = hn::BitCast(d, hn::ShiftLeft<52>(hn::Add(kBits, hn::Set(di, 1023))));
+  const V E = hn::MulAdd(scale, q, hn::Sub(scale, hn::Set(d, 1.0)));
+  return hn::Xor(hn::Div(E, hn::Add(E, hn::Set(d, 2.0))), sign);
+}
+
 /// A G² ribbon's saturated cross parameter r tanh(x / r)
 /// (GregorySamples::reach; the caller takes r ≥ 1 as x itself), with
 /// d/dx = 1 − tanh² into *slope when given.
 template <class D, class V> HWY_INLINE V saturatedCross(D d, V x, double reach, V *slope = nullptr) {
-  const V th = hn::Tanh(d, hn::Mul(x, hn::Set(d, 1.0 / reach)));
+  const V th = tanhOf(d, hn::Mul(x, hn::Set(d, 1.0 / reach)));
   if (slope) *slope = hn::NegMulAdd(th, th, hn::Set(d, 1.0));
   return hn::Mul(hn::Set(d, reach), th);
 }

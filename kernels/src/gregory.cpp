@@ -38,6 +38,12 @@ struct CornerWeightArgs {
   double *weights;
   std::size_t stride;
 };
+
+struct SaturatedCrossArgs {
+  const double *x;
+  double reach;
+  double *value, *slope;
+};
 } // namespace curvenet::kernels_impl
 #endif
 
@@ -207,6 +213,14 @@ void GregoryCornerWeights(std::size_t count, const CornerWeightArgs &args, bool 
   cornerWeightsLoop(hn::CappedTag<double, 1>(), k, count, args.s, args.sPrevious, args.weights, args.stride);
 }
 
+void SaturatedCross(std::size_t count, const SaturatedCrossArgs &a, bool reference) {
+  forEachVectorOrReference(reference, count, [&](auto d, std::size_t k) {
+    hn::Vec<decltype(d)> slope;
+    hn::StoreU(saturatedCross(d, hn::LoadU(d, a.x + k), a.reach, &slope), d, a.value + k);
+    hn::StoreU(slope, d, a.slope + k);
+  });
+}
+
 } // namespace HWY_NAMESPACE
 } // namespace kernels_impl
 } // namespace curvenet
@@ -217,6 +231,7 @@ namespace curvenet {
 namespace kernels_impl {
 HWY_EXPORT(GregoryPositions);
 HWY_EXPORT(GregoryCornerWeights);
+HWY_EXPORT(SaturatedCross);
 } // namespace kernels_impl
 
 inline namespace v1 {
@@ -244,6 +259,13 @@ void gregoryCornerWeights(std::size_t count, const double *s, const double *sPre
   bool reference;
   const std::size_t index = tableIndex(width, reference);
   HWY_DISPATCH_TABLE(GregoryCornerWeights)[index](count, {s, sPrevious, weights, stride}, reference);
+}
+
+void saturatedCross(std::size_t count, const double *x, double reach, double *value, double *slope,
+                    std::int64_t width) {
+  bool reference;
+  const std::size_t index = tableIndex(width, reference);
+  HWY_DISPATCH_TABLE(SaturatedCross)[index](count, {x, reach, value, slope}, reference);
 }
 
 namespace {

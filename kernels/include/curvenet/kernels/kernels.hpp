@@ -184,6 +184,12 @@ GregoryCornerTerms gregoryCornerTerms(const GregoryCorner &corner);
 void gregoryCornerWeights(std::size_t count, const double *s, const double *sPrevious, double *weights,
                           std::size_t stride, std::int64_t width = kBestWidth);
 
+/// A G² ribbon's saturated cross parameter r tanh(x / r) and its slope
+/// 1 − tanh²(x / r) at x[0 .. count), as the Gregory kernels compute them
+/// for a ribbon of reach r < 1 (GregorySamples::reach).
+void saturatedCross(std::size_t count, const double *x, double reach, double *value, double *slope,
+                    std::int64_t width = kBestWidth);
+
 /// (b) Gregory patch positions ([SV14] eqs. 16–18, 22):
 /// out[c][k] = Σ_i B_i (R_{i−1}(s_{i−1}, s_i) + R_i(s_i, t_i) − Q_i(s_i, t_i)),
 /// t_i = 1 − s_{i−1}, R(σ, δ) = P(σ) + δ T(σ) [+ ½ δ² C(σ)]; corners with
