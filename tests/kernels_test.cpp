@@ -905,5 +905,35 @@ TEST(Kernels, GregoryJetsAgreeAcrossWidthsAndWithDualArithmetic) {
         ck::gregoryJets(count, inTurned, corners.data(), span9(out), w.id);
         EXPECT_LE(relativeDifference(out.data, formula), 1e-12) << w.name << " n=" << n << " kind " << kind << " (turned gradients)";
       }
+      if (!parabolic) continue;
+      // G²: given the corners' weights and partials from
+      // gregoryCornerWeightJets, the very numbers it computes without them
+      // (kind 4: corners whose cross parameters saturate compute their own);
+      // the weights' partials against central differences of the weights.
+      for (const auto &w : ck::availableWidths()) {
+        Soa weights(24 * n, count), computed(9, count), shared(9, count);
+        ck::GregoryJetSamples withWeights = in;
+        for (int i = 0; i < n; ++i) {
+          ck::gregoryCornerWeightJets(count, s[3 * i], s[3 * ((i + n - 1) % n)], weights[24 * i], count, w.id);
+          withWeights.weightJets[i] = weights[24 * i];
+        }
+        withWeights.weightJetStride = count;
+        ck::gregoryJets(count, in, corners.data(), span9(computed), w.id);
+        ck::gregoryJets(count, withWeights, corners.data(), span9(shared), w.id);
+        std::size_t mismatches = 0;
+        for (std::size_t a = 0; a < computed.data.size(); ++a) mismatches += computed.data[a] != shared.data[a];
+        EXPECT_EQ(mismatches, 0u) << w.name << " n=" << n << " kind " << kind << " (shared weights)";
+        const double h = 1e-6;
+        for (std::size_t k = 0; k < count; k += 17) {
+          const double si = s[0][k], sp = s[3 * (n - 1)][k];
+          double at[4][24];
+          const double sArg[4] = {si + h, si - h, si, si}, spArg[4] = {sp, sp, sp - h, sp + h}; // t = 1 − sp: ±h
+          for (int e = 0; e < 4; ++e) ck::gregoryCornerWeightJets(1, &sArg[e], &spArg[e], at[e], 1, w.id);
+          for (int j = 0; j < 8; ++j) {
+            EXPECT_NEAR(weights[8 + j][k], (at[0][j] - at[1][j]) / (2 * h), 1e-6) << w.name << " weight " << j << " d/ds";
+            EXPECT_NEAR(weights[16 + j][k], (at[2][j] - at[3][j]) / (2 * h), 1e-6) << w.name << " weight " << j << " d/dt";
+          }
+        }
+      }
     }
 }

@@ -294,6 +294,25 @@ TEST_P(PlannedPositions, MatchPointwiseEvaluationOnEveryBuiltin) {
         std::size_t mismatches = 0;
         for (std::size_t k = 0; k < grouped.size(); ++k) mismatches += grouped[k] != single[k];
         EXPECT_EQ(mismatches, 0u) << info.name << " face " << f / 2 << " " << schemeName(o.scheme);
+        // The jets the same way (the tessellator's pass, G²'s weights and
+        // their partials shared): the numbers of the members one by one.
+        std::vector<double> groupedJets(9 * plan->size()), singleJets(9 * plan->size());
+        auto into = [&](std::vector<double> &to, std::size_t first) {
+          return [&to, first, &plan](std::size_t at, std::size_t size, const double *const jet[9]) {
+            for (int c = 0; c < 9; ++c)
+              for (std::size_t k = 0; k < size; ++k) to[c * plan->size() + first + at + k] = jet[c][k];
+          };
+        };
+        for (const EvaluationPlan::Group &g : plan->groups(f % 2 ? 5 : 200)) {
+          patch.evaluatePlannedGroup(*plan, g, [&](int m, std::size_t at, std::size_t size, const double *const jet[9]) {
+            into(groupedJets, g.first + m * g.stride)(at, size, jet);
+          });
+          for (int m = 0; m < g.members; ++m)
+            patch.evaluatePlanned(*plan, g.first + m * g.stride, g.count, into(singleJets, g.first + m * g.stride));
+        }
+        mismatches = 0;
+        for (std::size_t k = 0; k < groupedJets.size(); ++k) mismatches += groupedJets[k] != singleJets[k];
+        EXPECT_EQ(mismatches, 0u) << info.name << " face " << f / 2 << " " << schemeName(o.scheme) << " (jets)";
         std::vector<DualVec3> planned(plan->size());
         patch.evaluatePlanned(*plan, 0, plan->size(), planned.data());
         for (std::size_t k = 0; k < plan->size(); k += 23) {

@@ -30,6 +30,12 @@ struct GregoryJetArgs {
   ck::DualVec3Span out;
   const ck::GregoryCornerTerms *terms; ///< per corner, G² only
 };
+
+struct CornerWeightJetArgs {
+  const double *s, *sPrevious;
+  double *weights;
+  std::size_t stride;
+};
 } // namespace curvenet::kernels_impl
 #endif
 
@@ -167,12 +173,13 @@ HWY_INLINE void g2TaylorJet(D d, V s, V t, const ck::GregoryCornerTerms &terms, 
   }
 }
 
-/// The rational part Σ_j ρ_j rational[j] of a G² correction patch added to
-/// q, ρ_j = s³ t^r / (s^{3−p} + t^{3−r}) with
+/// The rational weights of a G² correction patch with their partials,
+/// ρ_j = s³ t^r / (s^{3−p} + t^{3−r}) with
 ///   ∂ρ/∂s = s² t^r (3 t^{3−r} + p s^{3−p}) / den²,
-///   ∂ρ/∂t = s³ t^{r−1} (r s^{3−p} + (2r − 3) t^{3−r}) / den²  (r = 0: −3 s³ t² / den²).
-template <class D, class V>
-HWY_INLINE void addG2RationalJet(D d, V s, V t, const ck::GregoryCornerTerms &terms, V (&q)[3][3]) {
+///   ∂ρ/∂t = s³ t^{r−1} (r s^{3−p} + (2r − 3) t^{3−r}) / den²  (r = 0: −3 s³ t² / den²),
+/// j counting (p, r) ≠ (0, 0) row by row (gregoryCornerWeightJets stores
+/// the same numbers).
+template <class D, class V> HWY_INLINE void g2RationalWeightJets(D d, V s, V t, V (&rho)[8], V (&rhoS)[8], V (&rhoT)[8]) {
   V sp3[4], tp3[4], inv[8];
   g2CornerWeights(d, s, t, sp3, tp3, inv);
   // s^2 t^r and s^3 t^r for r = 0, 1, 2, shared by the rows p.
@@ -183,29 +190,45 @@ HWY_INLINE void addG2RationalJet(D d, V s, V t, const ck::GregoryCornerTerms &te
     for (int r = 0; r <= 2; ++r) {
       if (!p && !r) continue;
       const V x = sp3[3 - p], y = tp3[3 - r], i1 = inv[j], i2 = hn::Mul(i1, i1);
-      const V rho = hn::Mul(s3t[r], i1);
-      const V rhoS = hn::Mul(hn::Mul(s2t[r], hn::MulAdd(hn::Set(d, p), x, hn::Mul(hn::Set(d, 3.0), y))), i2);
-      const V rhoT =
-          r ? hn::Mul(hn::Mul(s3t[r - 1], hn::MulAdd(hn::Set(d, r), x, hn::Mul(hn::Set(d, 2 * r - 3), y))), i2)
-            : hn::Mul(hn::Mul(hn::Set(d, -3.0), hn::Mul(sp3[3], tp3[2])), i2);
-      for (int c = 0; c < 3; ++c) {
-        const V R = hn::Set(d, terms.rational[j][c]);
-        q[0][c] = hn::MulAdd(rho, R, q[0][c]);
-        q[1][c] = hn::MulAdd(rhoS, R, q[1][c]);
-        q[2][c] = hn::MulAdd(rhoT, R, q[2][c]);
-      }
+      rho[j] = hn::Mul(s3t[r], i1);
+      rhoS[j] = hn::Mul(hn::Mul(s2t[r], hn::MulAdd(hn::Set(d, p), x, hn::Mul(hn::Set(d, 3.0), y))), i2);
+      rhoT[j] = r ? hn::Mul(hn::Mul(s3t[r - 1], hn::MulAdd(hn::Set(d, r), x, hn::Mul(hn::Set(d, 2 * r - 3), y))), i2)
+                  : hn::Mul(hn::Mul(hn::Set(d, -3.0), hn::Mul(sp3[3], tp3[2])), i2);
       ++j;
+    }
+}
+
+/// The rational part Σ_j ρ_j rational[j] of a G² correction patch added to
+/// q, its weights computed (g2RationalWeightJets) or, given `shared`,
+/// loaded: rows j, 8 + j, 16 + j of sample k at shared[row · stride + k].
+template <class D, class V>
+HWY_INLINE void addG2RationalJet(D d, std::size_t k, V s, V t, const ck::GregoryCornerTerms &terms, const double *shared,
+                                 std::size_t stride, V (&q)[3][3]) {
+  V rho[8], rhoS[8], rhoT[8];
+  if (shared) {
+    for (int j = 0; j < 8; ++j)
+      rho[j] = hn::LoadU(d, shared + j * stride + k), rhoS[j] = hn::LoadU(d, shared + (8 + j) * stride + k),
+      rhoT[j] = hn::LoadU(d, shared + (16 + j) * stride + k);
+  } else {
+    g2RationalWeightJets(d, s, t, rho, rhoS, rhoT);
+  }
+  for (int j = 0; j < 8; ++j)
+    for (int c = 0; c < 3; ++c) {
+      const V R = hn::Set(d, terms.rational[j][c]);
+      q[0][c] = hn::MulAdd(rho[j], R, q[0][c]);
+      q[1][c] = hn::MulAdd(rhoS[j], R, q[1][c]);
+      q[2][c] = hn::MulAdd(rhoT[j], R, q[2][c]);
     }
 }
 
 /// term −= (1 − μ) Q for a G² corner: Q and its partials in s and t, then
 /// the chain rule through sc and tc once per corner, not per term.
 template <class D, class V>
-HWY_INLINE void subtractG2Correction(D d, const CornerParameters<V> &p, const ck::GregoryCornerTerms &terms, double mu,
-                                     V (&term)[3][3]) {
+HWY_INLINE void subtractG2Correction(D d, std::size_t k, const CornerParameters<V> &p, const ck::GregoryCornerTerms &terms,
+                                     double mu, const double *shared, std::size_t stride, V (&term)[3][3]) {
   V q[3][3]; // [value, ∂/∂s, ∂/∂t][x, y, z]
   g2TaylorJet(d, p.sc.v, p.tc.v, terms, q);
-  addG2RationalJet(d, p.sc.v, p.tc.v, terms, q);
+  addG2RationalJet(d, k, p.sc.v, p.tc.v, terms, shared, stride, q);
   if (mu != 0) {
     const V keep = hn::Set(d, 1.0 - mu);
     for (auto &row : q)
@@ -274,7 +297,10 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
     if (mu == 1) {
       // The two-ribbon blend alone: no correction patch.
     } else if constexpr (Parabolic) {
-      subtractG2Correction(d, p, a.terms[i], mu, term);
+      // Shared weights are of the parameters themselves: not at a corner
+      // whose cross parameters saturate.
+      const bool shared = in.weightJets[i] && in.values.reach[prev] >= 1 && in.values.reach[i] >= 1;
+      subtractG2Correction(d, k, p, a.terms[i], mu, shared ? in.weightJets[i] : nullptr, in.weightJetStride, term);
     } else {
       subtractG1Correction(d, p, a.corners[i], mu, term);
     }
@@ -293,6 +319,21 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
   }
 }
 
+void GregoryCornerWeightJets(std::size_t count, const CornerWeightJetArgs &a, bool reference) {
+  forEachVectorOrReference(reference, count, [&](auto d, std::size_t k) {
+    using V = hn::Vec<decltype(d)>;
+    // s and t as cornerParameters takes them, so that the weights are the same numbers.
+    const V s = hn::LoadU(d, a.s + k), t = hn::Sub(hn::Set(d, 1.0), hn::LoadU(d, a.sPrevious + k));
+    V rho[8], rhoS[8], rhoT[8];
+    g2RationalWeightJets(d, s, t, rho, rhoS, rhoT);
+    for (int j = 0; j < 8; ++j) {
+      hn::StoreU(rho[j], d, a.weights + j * a.stride + k);
+      hn::StoreU(rhoS[j], d, a.weights + (8 + j) * a.stride + k);
+      hn::StoreU(rhoT[j], d, a.weights + (16 + j) * a.stride + k);
+    }
+  });
+}
+
 void GregoryJets(std::size_t count, const GregoryJetArgs &args, bool reference) {
   if (args.in->values.parabolic) forEachVectorOrReference(reference, count,
       [&](auto d, std::size_t k) { gregoryJetBody<true>(d, k, args); });
@@ -308,11 +349,19 @@ HWY_AFTER_NAMESPACE();
 namespace curvenet {
 namespace kernels_impl {
 HWY_EXPORT(GregoryJets);
+HWY_EXPORT(GregoryCornerWeightJets);
 } // namespace kernels_impl
 
 inline namespace v1 {
 namespace kernels {
 using namespace curvenet::kernels_impl;
+
+void gregoryCornerWeightJets(std::size_t count, const double *s, const double *sPrevious, double *weights,
+                             std::size_t stride, std::int64_t width) {
+  bool reference;
+  const std::size_t index = tableIndex(width, reference);
+  HWY_DISPATCH_TABLE(GregoryCornerWeightJets)[index](count, {s, sPrevious, weights, stride}, reference);
+}
 
 void gregoryJets(std::size_t count, const GregoryJetSamples &samples, const GregoryCorner *corners, DualVec3Span out,
                  std::int64_t width, const GregoryCornerTerms *terms) {

@@ -143,6 +143,16 @@ public:
   /// of the kernel's. The same numbers as evaluatePlannedPositions.
   void evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPlan::Group &group,
                             const PositionSink &out) const;
+  /// Where a group's jet pass hands its results: member m's blocks as
+  /// JetBlockSink's, `at` relative to the member's first sample.
+  using GroupJetSink =
+      std::function<void(int member, std::size_t at, std::size_t count, const double *const jet[9])>;
+  /// evaluatePlanned (jets, into a sink) on every member of a rotation
+  /// group. G² without saturating ribbons: the corners' weights and their
+  /// partials computed once per group and shared by rotation, as for
+  /// positions. The same numbers as evaluatePlanned member by member.
+  void evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPlan::Group &group,
+                            const GroupJetSink &out) const;
   /// evaluate() at many domain points (u[k], v[k]) at once: Hermite roots
   /// by the batched solver, exact ribbons, the derivative kernel
   /// (kernels::gregoryJets). Gregory schemes with the radial or cubic
@@ -226,8 +236,10 @@ private:
   /// corner blend: ribbons from the tables or exactly, then the kernel, in
   /// blocks small enough for their arrays to stay in the fast caches.
   void gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bool useTables, DualVec3 *out) const;
-  void gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bool useTables,
-                       const JetBlockSink &out) const;
+  /// With weightJets (G²): corner i's weights and partials for the samples
+  /// from weightJets[i] (kernels::GregoryJetSamples::weightJets).
+  void gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bool useTables, const JetBlockSink &out,
+                       const double *const *weightJets = nullptr, std::size_t weightJetStride = 0) const;
   /// The same from arrays sides[i·count + k], blends[i·count + k].
   void gregoryJetsFrom(std::size_t count, const Dual *sides, const Dual *blends, bool useTables, DualVec3 *out) const;
   /// Throws unless `plan` was made for this patch's sides and scheme.

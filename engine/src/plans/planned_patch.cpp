@@ -71,6 +71,11 @@ constexpr int kMaxCornerVectors = 17; // a00 and the eight (a, b) pairs of eq. 2
 // (pentagon r256: 64 is ~4% slower, the per-block calls, and 512 ~15%, the
 // cache).
 constexpr std::size_t kPositionBlock = 128;
+// Samples per block of the jet pass: the ribbons' values and slopes (up to
+// 18 arrays per side) then stay near the kernel (the L1 and L2 caches)
+// between the table pass and the kernel pass; whole tiles would spill them
+// to L3 (32 and 128 measured no faster).
+constexpr std::size_t kJetBlock = 64;
 
 /// A composite-ribbon batch's inputs as arrays: side i's parameter s[i][k],
 /// distance d[i][k] and blend b[i][k] = q_i + q_{i+1} from the per-corner
@@ -398,6 +403,47 @@ void Patch::evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPla
   }
 }
 
+void Patch::evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPlan::Group &group,
+                                 const GroupJetSink &out) const {
+  checkPlan(plan);
+  auto member = [&](int m) {
+    return [&out, m](std::size_t at, std::size_t size, const double *const jet[9]) { out(m, at, size, jet); };
+  };
+  // As for positions (the other evaluatePlannedGroup): G² weights shared by
+  // rotation where no corner saturates; the jets' weights come with their
+  // partials, three times the positions' rows.
+  if (options_.scheme != Scheme::GregoryG2 || plan.perSide() || reachLimited_) {
+    for (int m = 0; m < group.members; ++m) evaluatePlanned(plan, group.first + m * group.stride, group.count, member(m));
+    return;
+  }
+  const int n = domain_.sides(), members = group.members;
+  constexpr std::size_t kRows = 24, kStride = kJetBlock + 8; // a cache line apart modulo 4 KB, as for positions
+  thread_local kernels::AlignedVector<double> weights;
+  weights.resize(static_cast<std::size_t>(members) * kRows * kStride);
+  auto memberWeights = [&](int m) { return weights.data() + static_cast<std::size_t>(m) * kRows * kStride; };
+  const bool useTables = plan.key().resolution >= kTableResolution;
+  std::array<const double *, kMaxSides> cornerWeights;
+  for (std::size_t offset = 0; offset < group.count; offset += kJetBlock) {
+    const std::size_t count = std::min(kJetBlock, group.count - offset);
+    auto start = [&](int m) { return group.first + m * group.stride + offset; };
+    // Corner 0's weights on every member: its s_0 and t_0 = 1 − s_{n−1}.
+    for (int m = 0; m < members; ++m)
+      kernels::gregoryCornerWeightJets(count, plan.sideValuesFrom(0, start(m)),
+                                       plan.sideValuesFrom(0, start(group.source(m, n - 1))), memberWeights(m), kStride);
+    for (int m = 0; m < members; ++m) {
+      for (int i = 0; i < n; ++i) cornerWeights[i] = memberWeights(group.source(m, i));
+      const std::size_t first = start(m);
+      gregoryJetsFrom(
+          count,
+          [&](int i, std::size_t block, std::size_t size, double *const s[3], double *const b[3]) {
+            return plan.sidesAndBlends(i, first + block, size, s, b);
+          },
+          useTables, [&](std::size_t at, std::size_t size, const double *const jet[9]) { out(m, offset + at, size, jet); },
+          cornerWeights.data(), kStride);
+    }
+  }
+}
+
 void Patch::gregoryPositionsFrom(std::size_t count, const double *const *sideValues, const double *const *blendValues,
                                  const PositionSink &out, const double *const *cornerWeights,
                                  std::size_t weightStride) const {
@@ -588,12 +634,9 @@ void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bo
   });
 }
 
-void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bool useTables,
-                            const JetBlockSink &out) const {
-  // Blocks of 64 samples: the ribbons' values and slopes (up to 18 arrays
-  // per side) then stay near the kernel (the L1 and L2 caches) between the
-  // table pass and the kernel pass; whole tiles would spill them to L3.
-  constexpr std::size_t kBlock = 64;
+void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bool useTables, const JetBlockSink &out,
+                            const double *const *weightJets, std::size_t weightJetStride) const {
+  constexpr std::size_t kBlock = kJetBlock;
   const int n = domain_.sides();
   const bool g2 = options_.scheme == Scheme::GregoryG2;
   const PatchTables *tables = useTables ? &this->tables() : nullptr;
@@ -676,6 +719,10 @@ void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bo
         in.dP[i][c] = jets[i].dP.c[c], in.dT[i][c] = jets[i].dT.c[c];
         if (g2) in.values.C[i][c] = jets[i].C.c[c], in.dC[i][c] = jets[i].dC.c[c];
       }
+    }
+    if (g2 && weightJets) {
+      for (int i = 0; i < n; ++i) in.weightJets[i] = weightJets[i] + first;
+      in.weightJetStride = weightJetStride;
     }
     kernels::gregoryJets(m, in, kernelCorners_.data(),
                          {{result[0], result[1], result[2]},

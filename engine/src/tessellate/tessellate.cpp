@@ -513,11 +513,12 @@ void evaluatePlannedInteriors(const Surface &surface, const Layout &layout, cons
     const Patch &patch = *SurfaceAccess::patch(surface, tile.face);
     const EvaluationPlan &plan = *plans[tile.face];
     const std::size_t count = tile.samples.count;
-    for (int m = 0; m < tile.samples.members; ++m) {
-      const std::size_t first = tile.samples.first + m * tile.samples.stride;
+    {
       // Each block of the jet pass goes straight from the kernel's arrays
-      // into the mesh: the point with the origin, the unit normal.
-      patch.evaluatePlanned(plan, first, count, [&](std::size_t at, std::size_t size, const double *const r[9]) {
+      // into the mesh: the point with the origin, the unit normal. The
+      // group's members together: they share the G² corners' weights.
+      patch.evaluatePlannedGroup(plan, tile.samples, [&](int m, std::size_t at, std::size_t size, const double *const r[9]) {
+        const std::size_t first = tile.samples.first + m * tile.samples.stride;
         const std::size_t id = layout.faceBase[tile.face] + first + at;
         bool degenerate = false;
         for (std::size_t from = 0; from < size; from += 64) {
@@ -540,7 +541,7 @@ void evaluatePlannedInteriors(const Surface &surface, const Layout &layout, cons
         if (record)
           for (std::size_t k = 0; k < size; ++k) mesh.domainPoints[id + k] = {tile.face, plan.samples()[first + at + k]};
       });
-      progress.advance(count);
+      progress.advance(count * static_cast<std::size_t>(tile.samples.members));
     }
   });
 }

@@ -228,7 +228,23 @@ struct GregoryJetSamples {
   double sideTurn[GregorySamples::kMaxSides][2] = {{1, 0}, {1, 0}, {1, 0}, {1, 0}, {1, 0}, {1, 0}, {1, 0}, {1, 0}};
   double blendTurn[GregorySamples::kMaxSides][2] = {{1, 0}, {1, 0}, {1, 0}, {1, 0}, {1, 0}, {1, 0}, {1, 0}, {1, 0}};
   static_assert(GregorySamples::kMaxSides == 8, "one turn of (1, 0) per side in the turns' initializers");
+  /// G², optional: corner i's rational weights with their partials in s and
+  /// t from gregoryCornerWeightJets, row j of sample k at
+  /// weightJets[i][j · weightJetStride + k] — shared, like
+  /// GregorySamples::weights, by the samples a rotation maps onto one
+  /// another. Used at the corners whose two cross parameters do not
+  /// saturate (values.reach ≥ 1 on both), where the weights are those of
+  /// the side parameters themselves; null: computed here.
+  const double *weightJets[GregorySamples::kMaxSides] = {};
+  std::size_t weightJetStride = 0;
 };
+
+/// gregoryCornerWeights with the partials: rows j = 0 … 7 the eight weights
+/// ρ_j at (s[k], t = 1 − sPrevious[k]), rows 8 + j their ∂/∂s, rows 16 + j
+/// their ∂/∂t, row r of sample k at weights[r · stride + k]. gregoryJets
+/// computes the same numbers in the same operations when not given them.
+void gregoryCornerWeightJets(std::size_t count, const double *s, const double *sPrevious, double *weights,
+                             std::size_t stride, std::int64_t width = kBestWidth);
 
 /// (b) gregoryPositions with exact first derivatives: the point into out.v,
 /// ∂/∂u into out.du, ∂/∂v into out.dv (product, quotient and chain rules
