@@ -1,7 +1,8 @@
 // Per-target arithmetic shared by the Gregory kernels (gregory.cpp,
 // gregory_jets.cpp): batch inversion, the G² correction patch's rational
-// weights and the saturated cross parameter. Highway's -inl.h pattern: included once per target through
-// foreach_target, hence the toggled guard instead of #pragma once.
+// weights and the saturated cross parameter. Highway's -inl.h pattern:
+// included once per target through foreach_target, hence the toggled guard
+// instead of #pragma once.
 #if defined(CURVENET_KERNELS_GREGORY_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef CURVENET_KERNELS_GREGORY_INL_H_
 #undef CURVENET_KERNELS_GREGORY_INL_H_

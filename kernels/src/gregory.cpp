@@ -1,6 +1,7 @@
 // The Gregory formula's positions of curvenet/kernels/kernels.hpp
-// (gregoryPositions, gregoryPositionsInterleaved) and the G² corners'
-// rational weights (gregoryCornerWeights, gregoryCornerTerms). Written once
+// (gregoryPositions, gregoryPositionsInterleaved), the G² corners'
+// rational weights (gregoryCornerWeights, gregoryCornerTerms) and the
+// saturated cross parameter (saturatedCross). Written once
 // over a Highway descriptor D (CappedTag<double, 1> the width-1 scalar
 // reference); compiled once per target (foreach_target), dispatched at run
 // time. The derivatives: gregory_jets.cpp.

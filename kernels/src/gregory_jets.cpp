@@ -1,6 +1,7 @@
 // The Gregory formula with its exact first derivatives over the domain
 // (gregoryJets of curvenet/kernels/kernels.hpp): product, quotient and chain
-// rules through the ribbons and the rational weights in one pass. Written
+// rules through the ribbons and the rational weights in one pass; the G²
+// weights with their partials alone (gregoryCornerWeightJets). Written
 // once over a Highway descriptor D (CappedTag<double, 1> the width-1 scalar
 // reference); compiled once per target (foreach_target), dispatched at run
 // time.
