@@ -136,6 +136,48 @@ TEST_P(G1Surface, TessellationIsAManifoldWithTheNetworkBoundaryAsBorder) {
   EXPECT_EQ(std::count(used.begin(), used.end(), 0), 0);
 }
 
+TEST_P(G1Surface, TessellationRowsTileEachDomainCounterClockwise) {
+  // Inside the first row of samples (level 1 − 1/r of the domain polygon,
+  // the face's own samples), the triangles between rows run
+  // counter-clockwise in the domain and tile the polygon that row bounds:
+  // their areas sum to (1 − 1/r)² of the domain's. Without recomputing the
+  // strips: wrong or flipped triangles change the sum or the signs.
+  for (int r : {2, 3, 7, 12}) {
+    TessellationOptions options{r, 0};
+    options.recordDomainPoints = true;
+    const Mesh mesh = tessellate(surface, options);
+    for (int f = 0; f < surface.faceCount(); ++f) {
+      const int n = surface.domainSides(f);
+      std::vector<Vec2> corner(n);
+      for (int i = 0; i < n; ++i) corner[i] = surface.domainCorner(f, i);
+      double area = 0;
+      for (int i = 0; i < n; ++i) area += cross(corner[i], corner[(i + 1) % n]) / 2;
+      // A domain point's level: 1 on the polygon, 0 at the centre.
+      auto level = [&](Vec2 p) {
+        double worst = 0;
+        for (int i = 0; i < n; ++i) {
+          const Vec2 e = corner[(i + 1) % n] - corner[i], outward{e.y, -e.x};
+          worst = std::max(worst, dot(p, outward) / dot(corner[i], outward));
+        }
+        return worst;
+      };
+      double inner = 0;
+      for (std::uint32_t t = mesh.faceTriangleStart[f]; t < mesh.faceTriangleStart[f + 1]; ++t) {
+        const auto &tri = mesh.triangles[t];
+        bool inside = true;
+        for (std::uint32_t v : tri)
+          inside = inside && mesh.domainPoints[v].face == f && level(mesh.domainPoints[v].uv) < 1 - 0.5 / r;
+        if (!inside) continue;
+        const Vec2 a = mesh.domainPoints[tri[0]].uv, b = mesh.domainPoints[tri[1]].uv, c = mesh.domainPoints[tri[2]].uv;
+        const double twice = cross(b - a, c - a);
+        ASSERT_GT(twice, 0) << "face " << f << " r " << r << " triangle " << t << " is clockwise or flat";
+        inner += twice / 2;
+      }
+      EXPECT_NEAR(inner, (1 - 1.0 / r) * (1 - 1.0 / r) * area, 1e-12 * area) << "face " << f << " r " << r;
+    }
+  }
+}
+
 TEST_P(G1Surface, ExactDerivativesAgreeWithCentralDifferences) {
   const double h = 1e-5;
   for (int f = 0; f < surface.faceCount(); f += std::max(1, surface.faceCount() / 7)) {

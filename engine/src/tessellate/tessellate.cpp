@@ -74,6 +74,29 @@ void zip(const std::vector<RowPoint> &lower, const std::vector<RowPoint> &upper,
   }
 }
 
+/// zip for two evenly spaced rows, `lower` one point longer than `upper`
+/// (a sector's rows from the second on), written without its comparisons
+/// (a fan sector's triangles were 5 % of a tessellation). Lower triangle
+/// L(j, l) = (l_j, l_{j+1}, u_l), upper U(j, l) = (l_j, u_{l+1}, u_l): in
+/// zip's order they alternate, L(j, j) U(j + 1, j), until both rows end at
+/// t = 1, where the lower triangle comes first: L(m − 2, m − 2),
+/// L(m − 1, m − 2), U(m, m − 2) for m upper points.
+void zipEven(const std::vector<RowPoint> &lower, const std::vector<RowPoint> &upper, TriangleSink &out) {
+  const std::size_t m = upper.size();
+  CURVENET_CHECK(m >= 1 && lower.size() == m + 1 && out.written + 2 * m - 1 <= out.capacity,
+                 "a sector makes more triangles than its rows allow");
+  std::array<std::uint32_t, 3> *t = out.triangles + out.written;
+  auto L = [&](std::size_t j, std::size_t l) { *t++ = {lower[j].id, lower[j + 1].id, upper[l].id}; };
+  auto U = [&](std::size_t j, std::size_t l) { *t++ = {lower[j].id, upper[l + 1].id, upper[l].id}; };
+  if (m == 1) {
+    L(0, 0);
+  } else {
+    for (std::size_t j = 0; j + 2 < m; ++j) L(j, j), U(j + 1, j);
+    L(m - 2, m - 2), L(m - 1, m - 2), U(m, m - 2);
+  }
+  out.written += 2 * m - 1;
+}
+
 struct Layout {
   std::vector<int> faceResolution;         ///< rows per centre–side triangle of each face
   std::vector<int> segmentIntervals;       ///< samples per segment
@@ -513,36 +536,34 @@ void evaluatePlannedInteriors(const Surface &surface, const Layout &layout, cons
     const Patch &patch = *SurfaceAccess::patch(surface, tile.face);
     const EvaluationPlan &plan = *plans[tile.face];
     const std::size_t count = tile.samples.count;
-    {
-      // Each block of the jet pass goes straight from the kernel's arrays
-      // into the mesh: the point with the origin, the unit normal. The
-      // group's members together: they share the G² corners' weights.
-      patch.evaluatePlannedGroup(plan, tile.samples, [&](int m, std::size_t at, std::size_t size, const double *const r[9]) {
-        const std::size_t first = tile.samples.first + m * tile.samples.stride;
-        const std::size_t id = layout.faceBase[tile.face] + first + at;
-        bool degenerate = false;
-        for (std::size_t from = 0; from < size; from += 64) {
-          const std::size_t block = std::min<std::size_t>(64, size - from);
-          alignas(64) double n[3][64];
-          degenerate |= unitNormals(block, r[3] + from, r[4] + from, r[5] + from, r[6] + from, r[7] + from, r[8] + from,
-                                    n[0], n[1], n[2]) > 0;
-          Vec3 *position = mesh.positions.data() + id + from, *unit = mesh.normals.data() + id + from;
-          for (std::size_t k = 0; k < block; ++k) {
-            position[k] = {r[0][from + k] + origin.x, r[1][from + k] + origin.y, r[2][from + k] + origin.z};
-            unit[k] = {n[0][k], n[1][k], n[2][k]};
-          }
+    // Each block of the jet pass goes straight from the kernel's arrays
+    // into the mesh: the point with the origin, the unit normal. The
+    // group's members together: they share the G² corners' weights.
+    patch.evaluatePlannedGroup(plan, tile.samples, [&](int m, std::size_t at, std::size_t size, const double *const r[9]) {
+      const std::size_t first = tile.samples.first + m * tile.samples.stride;
+      const std::size_t id = layout.faceBase[tile.face] + first + at;
+      bool degenerate = false;
+      for (std::size_t from = 0; from < size; from += 64) {
+        const std::size_t block = std::min<std::size_t>(64, size - from);
+        alignas(64) double n[3][64];
+        degenerate |= unitNormals(block, r[3] + from, r[4] + from, r[5] + from, r[6] + from, r[7] + from, r[8] + from,
+                                  n[0], n[1], n[2]) > 0;
+        Vec3 *position = mesh.positions.data() + id + from, *unit = mesh.normals.data() + id + from;
+        for (std::size_t k = 0; k < block; ++k) {
+          position[k] = {r[0][from + k] + origin.x, r[1][from + k] + origin.y, r[2][from + k] + origin.z};
+          unit[k] = {n[0][k], n[1][k], n[2][k]};
         }
-        if (degenerate)
-          for (std::size_t k = 0; k < size; ++k) {
-            const Vec3 du{r[3][k], r[4][k], r[5][k]}, dv{r[6][k], r[7][k], r[8][k]};
-            if (squaredNorm(cross(du, dv)) <= 1e-24 * squaredNorm(du) * squaredNorm(dv))
-              mesh.normals[id + k] = surface.evaluate(tile.face, plan.samples()[first + at + k]).normal;
-          }
-        if (record)
-          for (std::size_t k = 0; k < size; ++k) mesh.domainPoints[id + k] = {tile.face, plan.samples()[first + at + k]};
-      });
-      progress.advance(count * static_cast<std::size_t>(tile.samples.members));
-    }
+      }
+      if (degenerate)
+        for (std::size_t k = 0; k < size; ++k) {
+          const Vec3 du{r[3][k], r[4][k], r[5][k]}, dv{r[6][k], r[7][k], r[8][k]};
+          if (squaredNorm(cross(du, dv)) <= 1e-24 * squaredNorm(du) * squaredNorm(dv))
+            mesh.normals[id + k] = surface.evaluate(tile.face, plan.samples()[first + at + k]).normal;
+        }
+      if (record)
+        for (std::size_t k = 0; k < size; ++k) mesh.domainPoints[id + k] = {tile.face, plan.samples()[first + at + k]};
+    });
+    progress.advance(count * static_cast<std::size_t>(tile.samples.members));
   });
 }
 
@@ -645,7 +666,9 @@ void zipSector(const Surface &surface, const Layout &layout, const BoundaryRows 
         }
       }
     }
-    zip(lower, upper, out);
+    // From the second row on both rows are the sector's own, evenly spaced.
+    if (k >= 2 && !out.domains) zipEven(lower, upper, out);
+    else zip(lower, upper, out);
     std::swap(lower, upper);
   }
   CURVENET_CHECK(out.written == sectors.count[item], "face " + std::to_string(f) + " sector " + std::to_string(i) +
