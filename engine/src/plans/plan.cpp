@@ -55,7 +55,6 @@ void EvaluationPlan::placeSamples(const RegularDomain &domain) {
   // that the sample positions are the same doubles.
   perTriangle_ = static_cast<std::size_t>((r - 1) * (r - 2) / 2);
   interiorBase_ = 1 + static_cast<std::size_t>(n) * (r - 1);
-  spokeLength_ = static_cast<std::size_t>(std::max(r - 1, 1)); // rotated() divides by it
   const std::size_t perTriangle = perTriangle_, interiorBase = interiorBase_;
   auto spoke = [&](int i, int k) { return 1 + static_cast<std::size_t>(((i % n + n) % n) * (r - 1) + (k - 1)); };
   samples_[0] = {0, 0};

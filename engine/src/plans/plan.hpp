@@ -60,7 +60,9 @@ public:
     if (i == 0 || k == 0) return k;
     const std::size_t n = static_cast<std::size_t>(key_.sides), shift = n - static_cast<std::size_t>(i);
     const bool spoke = k < interiorBase_;
-    const std::size_t base = spoke ? 1 : interiorBase_, piece = spoke ? spokeLength_ : perTriangle_;
+    // A spoke holds r − 1 samples (k ≥ 1 lies on one only if r ≥ 2).
+    const std::size_t base = spoke ? 1 : interiorBase_;
+    const std::size_t piece = spoke ? static_cast<std::size_t>(key_.resolution - 1) : perTriangle_;
     const std::size_t t = (k - base) / piece, offset = (k - base) - t * piece;
     return base + (t + shift) % n * piece + offset;
   }
@@ -165,7 +167,7 @@ private:
   bool perSide_ = false;
   /// The layout: centre and spokes below interiorBase_, then n centre–side
   /// triangle interiors of perTriangle_ samples each.
-  std::size_t interiorBase_ = 0, perTriangle_ = 0, spokeLength_ = 1;
+  std::size_t interiorBase_ = 0, perTriangle_ = 0;
 };
 
 /// The process-wide plan cache: concurrent lookups, one build per key (later
