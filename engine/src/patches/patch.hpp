@@ -244,6 +244,9 @@ private:
   void gregoryJetsFrom(std::size_t count, const Dual *sides, const Dual *blends, bool useTables, DualVec3 *out) const;
   /// Throws unless `plan` was made for this patch's sides and scheme.
   void checkPlan(const EvaluationPlan &plan) const;
+  /// Whether evaluatePlannedGroup shares the G² corners' weights across
+  /// the group's members for this plan.
+  bool sharesGroupWeights(const EvaluationPlan &plan) const;
   /// The Gregory formula's positions from every side's parameter and
   /// corner blend values (arrays of `count`): tables, then the kernel.
   /// G²: corner i's rational weights may come in cornerWeights[i]

@@ -359,89 +359,102 @@ void Patch::evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t fir
   }
 }
 
-void Patch::evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPlan::Group &group,
-                                 const PositionSink &out) const {
-  checkPlan(plan);
+namespace {
+/// The rotation-group pass both evaluatePlannedGroup share: the group's
+/// members block by block (`block` samples), corner 0's weights on every
+/// member first — weigh(count, s_0, s_{n−1}, into, stride), `rows` arrays
+/// of it a member — then evaluate(m, offset, count, cornerWeights, stride)
+/// for each member m, corner i's weights being corner 0's on member
+/// source(m, i) (Group::source). The weight arrays lie a cache line apart
+/// modulo 4 KB (as the Scratch arrays: at a 1 KB stride, loads wait behind
+/// stores to other arrays that share their address bits).
+template <class Weigh, class Evaluate>
+void forEachGroupBlockWithSharedWeights(const EvaluationPlan &plan, const EvaluationPlan::Group &group,
+                                        std::size_t block, std::size_t rows, const Weigh &weigh,
+                                        const Evaluate &evaluate) {
+  const int n = plan.key().sides, members = group.members;
+  const std::size_t stride = block + 8;
+  thread_local kernels::AlignedVector<double> weights;
+  weights.resize(static_cast<std::size_t>(members) * rows * stride);
+  auto memberWeights = [&](int m) { return weights.data() + static_cast<std::size_t>(m) * rows * stride; };
+  std::array<const double *, kMaxSides> cornerWeights;
+  for (std::size_t offset = 0; offset < group.count; offset += block) {
+    const std::size_t count = std::min(block, group.count - offset);
+    auto start = [&](int m) { return group.first + m * group.stride + offset; };
+    // Corner 0's weights on every member: its s_0 and t_0 = 1 − s_{n−1}.
+    for (int m = 0; m < members; ++m)
+      weigh(count, plan.sideValuesFrom(0, start(m)), plan.sideValuesFrom(0, start(group.source(m, n - 1))),
+            memberWeights(m), stride);
+    for (int m = 0; m < members; ++m) {
+      for (int i = 0; i < n; ++i) cornerWeights[i] = memberWeights(group.source(m, i));
+      evaluate(m, offset, count, cornerWeights.data(), stride);
+    }
+  }
+}
+} // namespace
+
+bool Patch::sharesGroupWeights(const EvaluationPlan &plan) const {
   // Shared weights need every side's parameters to be side 0's rotated
   // (not so on triangles, perSide()). G¹'s are too cheap to repay the round
   // trip through memory: shared, its evaluation measured no faster (they are
   // 7% of its kernel even when free, G²'s 29%). A patch whose ribbons
   // saturate has weights of its own per corner (of the saturated cross
   // parameters, kernels::GregorySamples::reach): nothing to share.
-  if (options_.scheme != Scheme::GregoryG2 || plan.perSide() || reachLimited_) {
+  return options_.scheme == Scheme::GregoryG2 && !plan.perSide() && !reachLimited_;
+}
+
+void Patch::evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPlan::Group &group,
+                                 const PositionSink &out) const {
+  checkPlan(plan);
+  if (!sharesGroupWeights(plan)) {
     for (int m = 0; m < group.members; ++m)
       evaluatePlannedPositions(plan, group.first + m * group.stride, group.count, out.from(m * group.stride));
     return;
   }
-  const int n = domain_.sides(), members = group.members;
-  // Each member's eight weight arrays, a cache line apart modulo 4 KB (as
-  // the Scratch arrays: at a 1 KB stride, loads wait behind stores to
-  // other arrays that share their address bits).
-  constexpr std::size_t kWeights = 8, kWeightStride = kPositionBlock + 8;
-  thread_local kernels::AlignedVector<double> weights;
-  weights.resize(static_cast<std::size_t>(members) * kWeights * kWeightStride);
-  auto memberWeights = [&](int m) { return weights.data() + static_cast<std::size_t>(m) * kWeights * kWeightStride; };
-  // Side i's (corner i's) data on member m: side 0's on member m − i
-  // (Group::source).
-  std::array<const double *, kMaxSides> side, blend, cornerWeights;
-  for (std::size_t offset = 0; offset < group.count; offset += kPositionBlock) {
-    const std::size_t count = std::min(kPositionBlock, group.count - offset);
-    auto start = [&](int m) { return group.first + m * group.stride + offset; };
-    // Corner 0's weights on every member: its s_0 and t_0 = 1 − s_{n−1}.
-    for (int m = 0; m < members; ++m)
-      kernels::gregoryCornerWeights(count, plan.sideValuesFrom(0, start(m)),
-                                    plan.sideValuesFrom(0, start(group.source(m, n - 1))), memberWeights(m), kWeightStride);
-    for (int m = 0; m < members; ++m) {
-      for (int i = 0; i < n; ++i) {
-        const int from = group.source(m, i);
-        side[i] = plan.sideValuesFrom(0, start(from)), blend[i] = plan.blendValuesFrom(0, start(from));
-        cornerWeights[i] = memberWeights(from);
-      }
-      gregoryPositionsFrom(count, side.data(), blend.data(), out.from(m * group.stride + offset), cornerWeights.data(),
-                           kWeightStride);
-    }
-  }
+  // Side i's (corner i's) data on member m: side 0's on member m − i.
+  forEachGroupBlockWithSharedWeights(
+      plan, group, kPositionBlock, 8,
+      [](std::size_t count, const double *s, const double *sPrevious, double *into, std::size_t stride) {
+        kernels::gregoryCornerWeights(count, s, sPrevious, into, stride);
+      },
+      [&](int m, std::size_t offset, std::size_t count, const double *const *cornerWeights, std::size_t stride) {
+        std::array<const double *, kMaxSides> side, blend;
+        for (int i = 0; i < domain_.sides(); ++i) {
+          const std::size_t from = group.first + group.source(m, i) * group.stride + offset;
+          side[i] = plan.sideValuesFrom(0, from), blend[i] = plan.blendValuesFrom(0, from);
+        }
+        gregoryPositionsFrom(count, side.data(), blend.data(), out.from(m * group.stride + offset), cornerWeights,
+                             stride);
+      });
 }
 
 void Patch::evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPlan::Group &group,
                                  const GroupJetSink &out) const {
   checkPlan(plan);
-  auto member = [&](int m) {
-    return [&out, m](std::size_t at, std::size_t size, const double *const jet[9]) { out(m, at, size, jet); };
-  };
-  // As for positions (the other evaluatePlannedGroup): G² weights shared by
-  // rotation where no corner saturates; the jets' weights come with their
-  // partials, three times the positions' rows.
-  if (options_.scheme != Scheme::GregoryG2 || plan.perSide() || reachLimited_) {
-    for (int m = 0; m < group.members; ++m) evaluatePlanned(plan, group.first + m * group.stride, group.count, member(m));
+  if (!sharesGroupWeights(plan)) {
+    for (int m = 0; m < group.members; ++m)
+      evaluatePlanned(plan, group.first + m * group.stride, group.count,
+                      [&out, m](std::size_t at, std::size_t size, const double *const jet[9]) { out(m, at, size, jet); });
     return;
   }
-  const int n = domain_.sides(), members = group.members;
-  constexpr std::size_t kRows = 24, kStride = kJetBlock + 8; // a cache line apart modulo 4 KB, as for positions
-  thread_local kernels::AlignedVector<double> weights;
-  weights.resize(static_cast<std::size_t>(members) * kRows * kStride);
-  auto memberWeights = [&](int m) { return weights.data() + static_cast<std::size_t>(m) * kRows * kStride; };
+  // The jets' weights come with their partials: three times the positions' rows.
   const bool useTables = plan.key().resolution >= kTableResolution;
-  std::array<const double *, kMaxSides> cornerWeights;
-  for (std::size_t offset = 0; offset < group.count; offset += kJetBlock) {
-    const std::size_t count = std::min(kJetBlock, group.count - offset);
-    auto start = [&](int m) { return group.first + m * group.stride + offset; };
-    // Corner 0's weights on every member: its s_0 and t_0 = 1 − s_{n−1}.
-    for (int m = 0; m < members; ++m)
-      kernels::gregoryCornerWeightJets(count, plan.sideValuesFrom(0, start(m)),
-                                       plan.sideValuesFrom(0, start(group.source(m, n - 1))), memberWeights(m), kStride);
-    for (int m = 0; m < members; ++m) {
-      for (int i = 0; i < n; ++i) cornerWeights[i] = memberWeights(group.source(m, i));
-      const std::size_t first = start(m);
-      gregoryJetsFrom(
-          count,
-          [&](int i, std::size_t block, std::size_t size, double *const s[3], double *const b[3]) {
-            return plan.sidesAndBlends(i, first + block, size, s, b);
-          },
-          useTables, [&](std::size_t at, std::size_t size, const double *const jet[9]) { out(m, offset + at, size, jet); },
-          cornerWeights.data(), kStride);
-    }
-  }
+  forEachGroupBlockWithSharedWeights(
+      plan, group, kJetBlock, 24,
+      [](std::size_t count, const double *s, const double *sPrevious, double *into, std::size_t stride) {
+        kernels::gregoryCornerWeightJets(count, s, sPrevious, into, stride);
+      },
+      [&](int m, std::size_t offset, std::size_t count, const double *const *cornerWeights, std::size_t stride) {
+        const std::size_t first = group.first + m * group.stride + offset;
+        gregoryJetsFrom(
+            count,
+            [&](int i, std::size_t block, std::size_t size, double *const s[3], double *const b[3]) {
+              return plan.sidesAndBlends(i, first + block, size, s, b);
+            },
+            useTables,
+            [&](std::size_t at, std::size_t size, const double *const jet[9]) { out(m, offset + at, size, jet); },
+            cornerWeights, stride);
+      });
 }
 
 void Patch::gregoryPositionsFrom(std::size_t count, const double *const *sideValues, const double *const *blendValues,
@@ -636,7 +649,6 @@ void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bo
 
 void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bool useTables, const JetBlockSink &out,
                             const double *const *weightJets, std::size_t weightJetStride) const {
-  constexpr std::size_t kBlock = kJetBlock;
   const int n = domain_.sides();
   const bool g2 = options_.scheme == Scheme::GregoryG2;
   const PatchTables *tables = useTables ? &this->tables() : nullptr;
@@ -644,8 +656,8 @@ void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bo
   thread_local std::vector<RibbonJet> linearJets;
   thread_local std::vector<ParabolicJet> parabolicJets;
   const std::size_t jetArrays = g2 ? 18 : 12;
-  for (std::size_t first = 0; first < count; first += kBlock) {
-    const std::size_t m = std::min(kBlock, count - first);
+  for (std::size_t first = 0; first < count; first += kJetBlock) {
+    const std::size_t m = std::min(kJetBlock, count - first);
     scratch.reset(m, static_cast<std::size_t>(n) * (6 + jetArrays) + 10);
     std::array<SideBlendArrays, kMaxSides> given; // where the source put side i's and corner i's arrays
     std::array<JetArrays, kMaxSides> jets;
