@@ -9,13 +9,13 @@
 #include <hwy/foreach_target.h> // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include "division-inl.h"
 #include "loops-inl.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <type_traits>
 
 #include "curvenet/kernels/kernels.hpp"
 #include "dispatch.hpp"
@@ -46,32 +46,6 @@ namespace kernels_impl {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 namespace ck = curvenet::kernels;
-
-/// a / b for a Newton step, with `refinements` Newton refinements of the
-/// reciprocal. On AVX-512 (at every width of that target, the width-1
-/// reference included, so that a lane's result does not depend on where it
-/// falls in a batch) from the 14-bit reciprocal estimate: each refinement
-/// doubles its bits (one: 28, two: 56), two multiply-adds each, where a
-/// division keeps the divider busy ~16 cycles per vector (an 8-lane vdivpd
-/// against one 8-lane multiply-add every half cycle) and the sweep's Newton
-/// steps had waited on it. Elsewhere a plain division. A step from an
-/// inexact reciprocal is still a Newton step to first order: the iterate
-/// converges as before, the certificate tests the root it reaches.
-template <int Refinements, class D, class V = hn::Vec<D>> HWY_INLINE V newtonQuotient(D d, V a, V b) {
-#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
-  using Raw = decltype(b.raw);
-  V r;
-  if constexpr (std::is_same_v<Raw, __m512d>) r.raw = _mm512_rcp14_pd(b.raw);
-  else if constexpr (std::is_same_v<Raw, __m256d>) r.raw = _mm256_rcp14_pd(b.raw);
-  else r.raw = _mm_rcp14_pd(b.raw);
-  const V one = hn::Set(d, 1.0);
-  for (int i = 0; i < Refinements; ++i) r = hn::MulAdd(r, hn::NegMulAdd(b, r, one), r);
-  return hn::Mul(a, r);
-#else
-  (void)d;
-  return hn::Div(a, b);
-#endif
-}
 
 /// Polynomial p(s) = Σ c_j s^j of degree ≤ 4, Horner.
 template <class V> HWY_INLINE V horner(const V (&c)[5], V s) {
