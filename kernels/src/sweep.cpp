@@ -118,13 +118,19 @@ template <bool Estimate = false, class D, class V = hn::Vec<D>> HWY_INLINE V swe
   return hn::Sub(px, Estimate ? newtonQuotient<1>(d, a, b) : hn::Div(a, b));
 }
 
-/// |F| at an end of [0, 1] below which the robust solver takes that end as a
-/// root: a point on a neighbouring side may show no sign change after rounding.
-template <class D, class V = hn::Vec<D>> HWY_INLINE V sweepEndTolerance(D d, const ck::SweepFrame &f, V x, V y) {
+/// The frame's factor of sweepEndTolerance, 1e-13 (|a| + |b|): computed once
+/// per call of a solver, not per vector (two scalar square roots).
+HWY_INLINE double sweepEndScale(const ck::SweepFrame &f) {
   // Plain square roots: the frame's vectors are of domain size (no overflow
   // to guard against), and std::hypot cost 5% of a batch here.
-  const double abNorm = std::sqrt(f.ax * f.ax + f.ay * f.ay) + std::sqrt(f.bx * f.bx + f.by * f.by);
-  return hn::Mul(hn::Set(d, 1e-13 * abNorm), hn::Add(hn::Set(d, 1.0), hn::Add(hn::Abs(x), hn::Abs(y))));
+  return 1e-13 * (std::sqrt(f.ax * f.ax + f.ay * f.ay) + std::sqrt(f.bx * f.bx + f.by * f.by));
+}
+
+/// |F| at an end of [0, 1] below which the robust solver takes that end as a
+/// root: a point on a neighbouring side may show no sign change after
+/// rounding. endScale: sweepEndScale of the frame.
+template <class D, class V = hn::Vec<D>> HWY_INLINE V sweepEndTolerance(D d, double endScale, V x, V y) {
+  return hn::Mul(hn::Set(d, endScale), hn::Add(hn::Set(d, 1.0), hn::Add(hn::Abs(x), hn::Abs(y))));
 }
 
 /// Robust solver: isolates every root on [0, 1] by the derivative cascade,
@@ -169,7 +175,7 @@ HWY_INLINE void sweepRobust(D d, const ck::SweepFrame &f, V x, V y, V &best, V &
     bestD = hn::IfThenElse(take, dist, bestD);
     bestScore = hn::IfThenElse(take, score, bestScore);
   };
-  const V tolerance = sweepEndTolerance(d, f, x, y);
+  const V tolerance = sweepEndTolerance(d, sweepEndScale(f), x, y);
   consider(zero, hn::Le(hn::Abs(horner(F, zero)), tolerance));
   consider(one, hn::Le(hn::Abs(horner(F, one)), tolerance));
   for (int j = 0; j < 4; ++j) {
@@ -187,27 +193,7 @@ HWY_INLINE void sweepRobust(D d, const ck::SweepFrame &f, V x, V y, V &best, V &
   }
 }
 
-/// Fast solver: safeguarded Newton from the radial parameter, then a
-/// certificate that the root found is the one the robust solver selects.
-/// Returns the lanes that hold it (s, dist written); the others need the
-/// robust solver. About 15 polynomial evaluations and 7 divisions per point.
-///
-/// Certificate, per lane:
-///  * Newton converged: a step |Δs| ≤ 1e-15 inside the bracket of F's sign
-///    change (steps leaving it are replaced by bisection; the lane's iterate
-///    freezes once converged, so the result does not depend on the other
-///    lanes of the vector);
-///  * the root r is the only one on [0, 1]: F(s) = (s − r) G(s) + F(r) with
-///    the cubic G from synthetic division. If G's Bernstein coefficients on
-///    [0, ½] and [½, 1] share a sign, |G| is bounded below on each half by
-///    them (a Bernstein polynomial is a convex combination of its
-///    coefficients); with the distance from r to each half this bounds
-///    |s − r| |G(s)| away from F(r) plus rounding, so every sign change of
-///    the computed F lies within 1e-13 of r: one root, the one the robust
-///    solver isolates;
-///  * neither end of [0, 1] passes the robust solver's end tolerance (else
-///    that end would be a second candidate);
-///  * d ≥ −1e-9 with a margin: the unique root is then the selection.
+/// A mask over the lanes of D (one per point).
 template <class D, class V = hn::Vec<D>> using SweepMask = decltype(hn::Lt(V(), V()));
 
 /// sweepFast's Newton iteration for G vectors of points at once, their F
@@ -278,7 +264,8 @@ HWY_INLINE void sweepNewton(D d, const ck::SweepFrame &f, const V (&x)[G], const
 /// certificate that the root found is the one the robust solver selects,
 /// for G vectors of points (x, y) at once (sweepNewton). Sets ok to the
 /// lanes that hold it (s, dist written); the others need the robust solver.
-/// About 15 polynomial evaluations and 7 divisions per point.
+/// About 15 polynomial evaluations and 7 quotients per point, on AVX-512 all
+/// but the distance's from refined reciprocal estimates (newtonQuotient).
 ///
 /// Certificate, per lane:
 ///  * Newton converged: a step |Δs| ≤ 1e-15 inside the bracket of F's sign
@@ -287,9 +274,10 @@ HWY_INLINE void sweepNewton(D d, const ck::SweepFrame &f, const V (&x)[G], const
 ///    lanes of the vector);
 ///  * the root r is the only one on [0, 1]: F(s) = (s − r) G(s) + F(r) with
 ///    the cubic G from synthetic division. If G's Bernstein coefficients on
-///    [0, ½] and [½, 1] share a sign, |G| is bounded below on each half by
-///    them (a Bernstein polynomial is a convex combination of its
-///    coefficients); with the distance from r to each half this bounds
+///    [0, 1] (or, failing that, on [0, ½] and [½, 1]) share a sign, |G| is
+///    bounded below on each half by them (a Bernstein polynomial is a
+///    convex combination of its coefficients); with the distance from r to
+///    each half (at least ρ = 1e-13) this bounds
 ///    |s − r| |G(s)| away from F(r) plus rounding, so every sign change of
 ///    the computed F lies within 1e-13 of r: one root, the one the robust
 ///    solver isolates;
@@ -297,8 +285,8 @@ HWY_INLINE void sweepNewton(D d, const ck::SweepFrame &f, const V (&x)[G], const
 ///    that end would be a second candidate);
 ///  * d ≥ −1e-9 with a margin: the unique root is then the selection.
 template <int G, class D, class V = hn::Vec<D>>
-HWY_INLINE void sweepFast(D d, const ck::SweepFrame &f, const V (&x)[G], const V (&y)[G], V (&s)[G], V (&dist)[G],
-                          SweepMask<D> (&ok)[G]) {
+HWY_INLINE void sweepFast(D d, const ck::SweepFrame &f, double endScale, const V (&x)[G], const V (&y)[G], V (&s)[G],
+                          V (&dist)[G], SweepMask<D> (&ok)[G]) {
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0), half = hn::Set(d, 0.5);
   V F[G][5], F1[G][5];
   for (int g = 0; g < G; ++g) {
@@ -318,17 +306,6 @@ HWY_INLINE void sweepFast(D d, const ck::SweepFrame &f, const V (&x)[G], const V
     const V third = hn::Set(d, 1.0 / 3.0);
     const V b1 = hn::MulAdd(third, g1, g0), b2 = hn::MulAdd(third, hn::Add(g1, hn::Add(g1, g2)), g0);
     const V b3 = hn::Add(hn::Add(g0, g1), hn::Add(g2, g3));
-    // One de Casteljau split at ½ tightens the hull (the control points of the
-    // halves are convex combinations of these): it certifies most triangle
-    // points whose quotient dips towards zero without a root.
-    const V l1 = hn::Mul(half, hn::Add(g0, b1)), c = hn::Mul(half, hn::Add(b1, b2)), r2 = hn::Mul(half, hn::Add(b2, b3));
-    const V l2 = hn::Mul(half, hn::Add(l1, c)), r1 = hn::Mul(half, hn::Add(c, r2)), mid = hn::Mul(half, hn::Add(l2, r1));
-    const V lowLeft = hn::Min(hn::Min(g0, l1), hn::Min(l2, mid)), lowRight = hn::Min(hn::Min(mid, r1), hn::Min(r2, b3));
-    const V highLeft = hn::Max(hn::Max(g0, l1), hn::Max(l2, mid)), highRight = hn::Max(hn::Max(mid, r1), hn::Max(r2, b3));
-    const auto positive = hn::Gt(hn::Min(lowLeft, lowRight), zero), negative = hn::Lt(hn::Max(highLeft, highRight), zero);
-    // |G| ≥ m on each half (with G's sign).
-    const V mLeft = hn::IfThenElse(positive, lowLeft, hn::Neg(highLeft));
-    const V mRight = hn::IfThenElse(positive, lowRight, hn::Neg(highRight));
     V scale = hn::Abs(Fg[0]);
     for (int j = 1; j < 5; ++j) scale = hn::Add(scale, hn::Abs(Fg[j]));
     // Another sign change of the computed F at s needs |s − r| |G(s)| ≤ E =
@@ -338,11 +315,34 @@ HWY_INLINE void sweepFast(D d, const ck::SweepFrame &f, const V (&x)[G], const V
     // on m keeps it far above the rounding of G's coefficients.
     const V E = hn::MulAdd(hn::Set(d, 8 * 2.220446049250313e-16), scale, hn::Abs(horner(Fg, r)));
     const V rho = hn::Set(d, 1e-13), floor = hn::Mul(hn::Set(d, 1e-10), scale);
-    const V reachLeft = hn::Max(hn::Sub(r, half), rho), reachRight = hn::Max(hn::Sub(half, r), rho);
-    const auto unique = hn::And(hn::Or(positive, negative),
-                                hn::And(hn::And(hn::Gt(hn::Mul(mLeft, reachLeft), E), hn::Gt(hn::Mul(mRight, reachRight), E)),
-                                        hn::And(hn::Gt(mLeft, floor), hn::Gt(mRight, floor))));
-    const V tolerance = sweepEndTolerance(d, f, x[g], y[g]);
+    // |G| ≥ m on [0, 1] from the hull of all four coefficients, with ρ as the
+    // distance on both halves: where that certifies every lane (nearly
+    // always for n ≥ 4) the split below would too — its halves' control
+    // points are convex combinations of these and their distances at least ρ
+    // — so it is skipped with the same result.
+    const V lowAll = hn::Min(hn::Min(g0, b1), hn::Min(b2, b3)), highAll = hn::Max(hn::Max(g0, b1), hn::Max(b2, b3));
+    const auto positiveAll = hn::Gt(lowAll, zero);
+    const V mAll = hn::IfThenElse(positiveAll, lowAll, hn::Neg(highAll));
+    auto unique = hn::And(hn::Or(positiveAll, hn::Lt(highAll, zero)),
+                          hn::And(hn::Gt(hn::Mul(mAll, rho), E), hn::Gt(mAll, floor)));
+    if (HWY_UNLIKELY(!hn::AllTrue(d, unique))) {
+      // One de Casteljau split at ½ tightens the hull (the control points of
+      // the halves are convex combinations of these): it certifies most
+      // triangle points whose quotient dips towards zero without a root.
+      const V l1 = hn::Mul(half, hn::Add(g0, b1)), c = hn::Mul(half, hn::Add(b1, b2)), r2 = hn::Mul(half, hn::Add(b2, b3));
+      const V l2 = hn::Mul(half, hn::Add(l1, c)), r1 = hn::Mul(half, hn::Add(c, r2)), mid = hn::Mul(half, hn::Add(l2, r1));
+      const V lowLeft = hn::Min(hn::Min(g0, l1), hn::Min(l2, mid)), lowRight = hn::Min(hn::Min(mid, r1), hn::Min(r2, b3));
+      const V highLeft = hn::Max(hn::Max(g0, l1), hn::Max(l2, mid)), highRight = hn::Max(hn::Max(mid, r1), hn::Max(r2, b3));
+      const auto positive = hn::Gt(hn::Min(lowLeft, lowRight), zero), negative = hn::Lt(hn::Max(highLeft, highRight), zero);
+      // |G| ≥ m on each half (with G's sign).
+      const V mLeft = hn::IfThenElse(positive, lowLeft, hn::Neg(highLeft));
+      const V mRight = hn::IfThenElse(positive, lowRight, hn::Neg(highRight));
+      const V reachLeft = hn::Max(hn::Sub(r, half), rho), reachRight = hn::Max(hn::Sub(half, r), rho);
+      unique = hn::And(hn::Or(positive, negative),
+                       hn::And(hn::And(hn::Gt(hn::Mul(mLeft, reachLeft), E), hn::Gt(hn::Mul(mRight, reachRight), E)),
+                               hn::And(hn::Gt(mLeft, floor), hn::Gt(mRight, floor))));
+    }
+    const V tolerance = sweepEndTolerance(d, endScale, x[g], y[g]);
     const auto endsClear = hn::And(hn::Gt(hn::Abs(Fg[0]), tolerance), hn::Gt(hn::Abs(horner(Fg, one)), tolerance));
     const SweepQuartic<D> q(d, f, x[g], y[g]);
     V wx, wy, sx, sy;
@@ -374,6 +374,7 @@ template <class D> HWY_INLINE std::size_t sweepFastThenRobust(D d, std::size_t c
   std::size_t index[kChunk];
   std::size_t total = 0;
   const std::size_t lanes = hn::Lanes(d);
+  const double endScale = sweepEndScale(a.frame);
   for (std::size_t begin = 0; begin < count; begin += kChunk) {
     const std::size_t end = std::min(count, begin + kChunk);
     std::size_t failed = 0;
@@ -384,7 +385,7 @@ template <class D> HWY_INLINE std::size_t sweepFastThenRobust(D d, std::size_t c
       V x[G], y[G], s[G], dist[G];
       SweepMask<DD> ok[G];
       for (int g = 0; g < G; ++g) x[g] = hn::LoadU(dd, a.x + k + g * width), y[g] = hn::LoadU(dd, a.y + k + g * width);
-      sweepFast<G>(dd, a.frame, x, y, s, dist, ok);
+      sweepFast<G>(dd, a.frame, endScale, x, y, s, dist, ok);
       for (int g = 0; g < G; ++g) {
         const std::size_t at = k + g * width;
         hn::StoreU(s[g], dd, a.s + at);
