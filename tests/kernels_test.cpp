@@ -11,6 +11,7 @@
 #include <cmath>
 #include <complex>
 #include <cstdlib>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -936,4 +937,53 @@ TEST(Kernels, GregoryJetsAgreeAcrossWidthsAndWithDualArithmetic) {
         }
       }
     }
+}
+
+TEST(Kernels, JetVerticesAreOffsetPointsAndUnitNormalsAtEveryWidth) {
+  // Random jets, with some rows made degenerate (dv parallel to du, or
+  // both zero) and one non-finite, at a count that leaves a tail.
+  std::mt19937_64 rng(41);
+  const size_t count = 1003;
+  Soa jets(9, count, &rng);
+  for (size_t k = 0; k < count; k += 97)
+    for (int c = 0; c < 3; ++c) jets[6 + c][k] = 2.5 * jets[3 + c][k]; // parallel
+  for (int c = 3; c < 9; ++c) jets[c][500] = 0;                          // both zero
+  jets[3][700] = std::numeric_limits<double>::quiet_NaN();
+  size_t expectedDegenerate = 0;
+  for (size_t k = 0; k < count; ++k) {
+    const Vec3 du{jets[3][k], jets[4][k], jets[5][k]}, dv{jets[6][k], jets[7][k], jets[8][k]};
+    expectedDegenerate += squaredNorm(cross(du, dv)) <= 1e-24 * squaredNorm(du) * squaredNorm(dv) ? 1 : 0;
+  }
+  ASSERT_GE(expectedDegenerate, count / 97);
+  const double *const columns[9] = {jets[0], jets[1], jets[2], jets[3], jets[4], jets[5], jets[6], jets[7], jets[8]};
+  const double offset[3] = {1.5, -2.25, 1e3};
+  for (const auto &w : ck::availableWidths()) {
+    std::vector<Vec3> points(count), normals(count);
+    const size_t degenerate = ck::jetVertices(count, columns, offset, &points[0].x, &normals[0].x, w.id);
+    EXPECT_EQ(degenerate, expectedDegenerate) << w.name;
+    for (size_t k = 0; k < count; ++k) {
+      // The points exactly: one addition each.
+      ASSERT_EQ(points[k].x, jets[0][k] + offset[0]) << w.name << " " << k;
+      ASSERT_EQ(points[k].y, jets[1][k] + offset[1]) << w.name << " " << k;
+      ASSERT_EQ(points[k].z, jets[2][k] + offset[2]) << w.name << " " << k;
+      const Vec3 du{jets[3][k], jets[4][k], jets[5][k]}, dv{jets[6][k], jets[7][k], jets[8][k]};
+      const Vec3 expected = normalized(cross(du, dv));
+      // A degenerate jet's cross product is rounding noise (the caller
+      // replaces its normal): only its length is checked.
+      if (squaredNorm(cross(du, dv)) <= 1e-24 * squaredNorm(du) * squaredNorm(dv)) {
+        if (norm(expected) > 0) ASSERT_NEAR(norm(normals[k]), 1.0, 4e-16) << w.name << " " << k;
+        continue;
+      }
+      if (!isFinite(expected) || norm(expected) == 0) {
+        // normalized()'s zero vector where the length is not above zero;
+        // NaN where a component is.
+        if (norm(expected) == 0) ASSERT_EQ(norm(normals[k]), 0.0) << w.name << " " << k;
+        continue;
+      }
+      // Unit, and the direction of du × dv, to the rounding of one product
+      // more than normalized()'s quotients.
+      ASSERT_NEAR(norm(normals[k]), 1.0, 4e-16) << w.name << " " << k;
+      ASSERT_LE(norm(normals[k] - expected), 8e-16) << w.name << " " << k;
+    }
+  }
 }

@@ -20,12 +20,10 @@
 #include <string>
 
 #include <unistd.h>
-#ifdef __SSE2__
-#include <emmintrin.h>
-#endif
 
 #include "bezier/bezier_surface.hpp"
 #include "curvenet/error.hpp"
+#include "curvenet/kernels/kernels.hpp"
 #include "patches/patch.hpp"
 #include "plans/face_errors.hpp"
 #include "plans/plan.hpp"
@@ -484,46 +482,6 @@ void evaluateBoundaryNormals(const Surface &surface, const Layout &layout, const
   });
 }
 
-/// Unit normals du × dv / |du × dv| of `count` jets (the jet arrays' ∂/∂u
-/// and ∂/∂v columns) into n[0..2]; returns how many are degenerate
-/// (|du × dv|² ≤ 1e-24 |du|² |dv|²), whose normals the caller replaces.
-/// Two samples at a time in SSE2 registers (x86-64's baseline, which the
-/// engine is compiled for): GCC keeps a loop with std::sqrt scalar for
-/// errno's sake. Square roots and divisions round correctly in either form,
-/// so lanes and the scalar tail give the same bits as normalized(cross()).
-std::size_t unitNormals(std::size_t count, const double *ux, const double *uy, const double *uz, const double *vx,
-                        const double *vy, const double *vz, double *nx, double *ny, double *nz) {
-  std::size_t degenerate = 0, k = 0;
-#ifdef __SSE2__
-  const __m128d zero = _mm_setzero_pd(), limit = _mm_set1_pd(1e-24);
-  for (; k + 2 <= count; k += 2) {
-    const __m128d ax = _mm_loadu_pd(ux + k), ay = _mm_loadu_pd(uy + k), az = _mm_loadu_pd(uz + k);
-    const __m128d bx = _mm_loadu_pd(vx + k), by = _mm_loadu_pd(vy + k), bz = _mm_loadu_pd(vz + k);
-    const __m128d x = _mm_sub_pd(_mm_mul_pd(ay, bz), _mm_mul_pd(az, by));
-    const __m128d y = _mm_sub_pd(_mm_mul_pd(az, bx), _mm_mul_pd(ax, bz));
-    const __m128d z = _mm_sub_pd(_mm_mul_pd(ax, by), _mm_mul_pd(ay, bx));
-    const __m128d size2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(x, x), _mm_mul_pd(y, y)), _mm_mul_pd(z, z));
-    const __m128d a2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(ax, ax), _mm_mul_pd(ay, ay)), _mm_mul_pd(az, az));
-    const __m128d b2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(bx, bx), _mm_mul_pd(by, by)), _mm_mul_pd(bz, bz));
-    const int flat = _mm_movemask_pd(_mm_cmple_pd(size2, _mm_mul_pd(_mm_mul_pd(limit, a2), b2)));
-    degenerate += static_cast<std::size_t>((flat & 1) + (flat >> 1));
-    const __m128d length = _mm_sqrt_pd(size2);
-    // normalized(): a length not above zero (or NaN) gives the zero vector.
-    const __m128d positive = _mm_cmpgt_pd(length, zero);
-    _mm_storeu_pd(nx + k, _mm_and_pd(positive, _mm_div_pd(x, length)));
-    _mm_storeu_pd(ny + k, _mm_and_pd(positive, _mm_div_pd(y, length)));
-    _mm_storeu_pd(nz + k, _mm_and_pd(positive, _mm_div_pd(z, length)));
-  }
-#endif
-  for (; k < count; ++k) {
-    const Vec3 du{ux[k], uy[k], uz[k]}, dv{vx[k], vy[k], vz[k]}, n = cross(du, dv);
-    degenerate += squaredNorm(n) <= 1e-24 * squaredNorm(du) * squaredNorm(dv) ? 1 : 0;
-    const Vec3 unit = normalized(n);
-    nx[k] = unit.x, ny[k] = unit.y, nz[k] = unit.z;
-  }
-  return degenerate;
-}
-
 /// Face interiors through evaluation plans: the plans first (each distinct
 /// key built once, itself in parallel), then tiles of samples in parallel.
 void evaluatePlannedInteriors(const Surface &surface, const Layout &layout, const FaceSelection &wanted, bool record,
@@ -542,18 +500,9 @@ void evaluatePlannedInteriors(const Surface &surface, const Layout &layout, cons
     patch.evaluatePlannedGroup(plan, tile.samples, [&](int m, std::size_t at, std::size_t size, const double *const r[9]) {
       const std::size_t first = tile.samples.first + m * tile.samples.stride;
       const std::size_t id = layout.faceBase[tile.face] + first + at;
-      bool degenerate = false;
-      for (std::size_t from = 0; from < size; from += 64) {
-        const std::size_t block = std::min<std::size_t>(64, size - from);
-        alignas(64) double n[3][64];
-        degenerate |= unitNormals(block, r[3] + from, r[4] + from, r[5] + from, r[6] + from, r[7] + from, r[8] + from,
-                                  n[0], n[1], n[2]) > 0;
-        Vec3 *position = mesh.positions.data() + id + from, *unit = mesh.normals.data() + id + from;
-        for (std::size_t k = 0; k < block; ++k) {
-          position[k] = {r[0][from + k] + origin.x, r[1][from + k] + origin.y, r[2][from + k] + origin.z};
-          unit[k] = {n[0][k], n[1][k], n[2][k]};
-        }
-      }
+      const double offset[3] = {origin.x, origin.y, origin.z};
+      const bool degenerate =
+          kernels::jetVertices(size, r, offset, &mesh.positions[id].x, &mesh.normals[id].x) > 0;
       if (degenerate)
         for (std::size_t k = 0; k < size; ++k) {
           const Vec3 du{r[3][k], r[4][k], r[5][k]}, dv{r[6][k], r[7][k], r[8][k]};

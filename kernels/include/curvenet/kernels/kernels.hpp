@@ -255,6 +255,17 @@ void gregoryCornerWeightJets(std::size_t count, const double *s, const double *s
 void gregoryJets(std::size_t count, const GregoryJetSamples &samples, const GregoryCorner *corners, DualVec3Span out,
                  std::int64_t width = kBestWidth, const GregoryCornerTerms *terms = nullptr);
 
+/// (b) A tessellation's vertices from `count` jets (jet[0..2] the point's
+/// x, y, z, jet[3..5] ∂/∂u and jet[6..8] ∂/∂v, as gregoryJets writes them):
+/// points[3k + c] = jet[c][k] + offset[c] and normals[3k + c] the unit
+/// normal du × dv / |du × dv| — one square root and one division a point,
+/// the components scaled by the reciprocal length (within 2 ulp of dividing
+/// each; zero where the length is not above zero, as normalized() gives).
+/// Returns how many jets are degenerate, |du × dv|² ≤ 1e-24 |du|² |dv|²,
+/// whose normals the caller replaces.
+std::size_t jetVertices(std::size_t count, const double *const jet[9], const double offset[3], double *points,
+                        double *normals, std::int64_t width = kBestWidth);
+
 /// Per-sample data of a Composite Ribbon patch ([VSR] Sec. 2). Side i
 /// contributes B_i C_i, its curved ribbon C_i a Coons patch of three
 /// ribbons: R_i at (s_i, d_i), R_{i−1} at (1 − d_i, s_i) and R_{i+1} at
