@@ -949,18 +949,24 @@ TEST(Kernels, JetVerticesAreOffsetPointsAndUnitNormalsAtEveryWidth) {
     for (int c = 0; c < 3; ++c) jets[6 + c][k] = 2.5 * jets[3 + c][k]; // parallel
   for (int c = 3; c < 9; ++c) jets[c][500] = 0;                          // both zero
   jets[3][700] = std::numeric_limits<double>::quiet_NaN();
-  size_t expectedDegenerate = 0;
+  std::vector<std::uint32_t> expectedIndices;
   for (size_t k = 0; k < count; ++k) {
     const Vec3 du{jets[3][k], jets[4][k], jets[5][k]}, dv{jets[6][k], jets[7][k], jets[8][k]};
-    expectedDegenerate += squaredNorm(cross(du, dv)) <= 1e-24 * squaredNorm(du) * squaredNorm(dv) ? 1 : 0;
+    if (squaredNorm(cross(du, dv)) <= 1e-24 * squaredNorm(du) * squaredNorm(dv))
+      expectedIndices.push_back(static_cast<std::uint32_t>(k));
   }
+  const size_t expectedDegenerate = expectedIndices.size();
   ASSERT_GE(expectedDegenerate, count / 97);
   const double *const columns[9] = {jets[0], jets[1], jets[2], jets[3], jets[4], jets[5], jets[6], jets[7], jets[8]};
   const double offset[3] = {1.5, -2.25, 1e3};
   for (const auto &w : ck::availableWidths()) {
     std::vector<Vec3> points(count), normals(count);
-    const size_t degenerate = ck::jetVertices(count, columns, offset, &points[0].x, &normals[0].x, w.id);
+    std::vector<std::uint32_t> flat(count);
+    const size_t degenerate = ck::jetVertices(count, columns, offset, &points[0].x, &normals[0].x, flat.data(), w.id);
     EXPECT_EQ(degenerate, expectedDegenerate) << w.name;
+    // Their indices, in order: exactly the degenerate jets.
+    flat.resize(degenerate);
+    EXPECT_EQ(flat, expectedIndices) << w.name;
     for (size_t k = 0; k < count; ++k) {
       // The points exactly: one addition each.
       ASSERT_EQ(points[k].x, jets[0][k] + offset[0]) << w.name << " " << k;
@@ -971,13 +977,17 @@ TEST(Kernels, JetVerticesAreOffsetPointsAndUnitNormalsAtEveryWidth) {
       // A degenerate jet's cross product is rounding noise (the caller
       // replaces its normal): only its length is checked.
       if (squaredNorm(cross(du, dv)) <= 1e-24 * squaredNorm(du) * squaredNorm(dv)) {
-        if (norm(expected) > 0) ASSERT_NEAR(norm(normals[k]), 1.0, 4e-16) << w.name << " " << k;
+        if (norm(expected) > 0) {
+          ASSERT_NEAR(norm(normals[k]), 1.0, 4e-16) << w.name << " " << k;
+        }
         continue;
       }
       if (!isFinite(expected) || norm(expected) == 0) {
         // normalized()'s zero vector where the length is not above zero;
         // NaN where a component is.
-        if (norm(expected) == 0) ASSERT_EQ(norm(normals[k]), 0.0) << w.name << " " << k;
+        if (norm(expected) == 0) {
+          ASSERT_EQ(norm(normals[k]), 0.0) << w.name << " " << k;
+        }
         continue;
       }
       // Unit, and the direction of du × dv, to the rounding of one product

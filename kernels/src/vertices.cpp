@@ -25,6 +25,7 @@ struct VertexArgs {
   const double *const *jet;
   double offset[3];
   double *points, *normals;
+  std::uint32_t *degenerate; ///< their indices, or null
 };
 } // namespace curvenet::kernels_impl
 #endif
@@ -35,9 +36,10 @@ namespace kernels_impl {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-/// Samples k … k + lanes − 1: their points and unit normals stored, their
-/// degenerate lanes counted.
-template <class D> HWY_INLINE std::size_t vertexBody(D d, std::size_t k, const VertexArgs &a) {
+/// Samples k … k + lanes − 1: their points and unit normals stored, the
+/// indices of their degenerate lanes appended at a.degenerate + found;
+/// returns how many there were.
+template <class D> HWY_INLINE std::size_t vertexBody(D d, std::size_t k, const VertexArgs &a, std::size_t found) {
   using V = hn::Vec<D>;
   auto load = [&](int column) { return hn::LoadU(d, a.jet[column] + k); };
   hn::StoreInterleaved3(hn::Add(load(0), hn::Set(d, a.offset[0])), hn::Add(load(1), hn::Set(d, a.offset[1])),
@@ -49,7 +51,14 @@ template <class D> HWY_INLINE std::size_t vertexBody(D d, std::size_t k, const V
   const V size2 = hn::Add(hn::Add(hn::Mul(x, x), hn::Mul(y, y)), hn::Mul(z, z));
   const V a2 = hn::Add(hn::Add(hn::Mul(ax, ax), hn::Mul(ay, ay)), hn::Mul(az, az));
   const V b2 = hn::Add(hn::Add(hn::Mul(bx, bx), hn::Mul(by, by)), hn::Mul(bz, bz));
-  const std::size_t degenerate = hn::CountTrue(d, hn::Le(size2, hn::Mul(hn::Mul(hn::Set(d, 1e-24), a2), b2)));
+  const auto flat = hn::Le(size2, hn::Mul(hn::Mul(hn::Set(d, 1e-24), a2), b2));
+  const std::size_t degenerate = hn::CountTrue(d, flat);
+  if (HWY_UNLIKELY(degenerate > 0) && a.degenerate) {
+    std::uint8_t bits[8] = {};
+    hn::StoreMaskBits(d, flat, bits);
+    for (std::size_t j = 0; j < hn::Lanes(d); ++j)
+      if ((bits[j >> 3] >> (j & 7)) & 1) a.degenerate[found++] = static_cast<std::uint32_t>(k + j);
+  }
   // One square root and one division a point (the components times the
   // reciprocal length): a division per component kept the divider busy
   // three times as long. A length not above zero (or NaN) gives the zero
@@ -64,7 +73,8 @@ template <class D> HWY_INLINE std::size_t vertexBody(D d, std::size_t k, const V
 
 std::size_t JetVertices(std::size_t count, const VertexArgs &args, bool reference) {
   std::size_t degenerate = 0;
-  forEachVectorOrReference(reference, count, [&](auto d, std::size_t k) { degenerate += vertexBody(d, k, args); });
+  forEachVectorOrReference(reference, count,
+                           [&](auto d, std::size_t k) { degenerate += vertexBody(d, k, args, degenerate); });
   return degenerate;
 }
 
@@ -84,11 +94,11 @@ namespace kernels {
 using namespace curvenet::kernels_impl;
 
 std::size_t jetVertices(std::size_t count, const double *const jet[9], const double offset[3], double *points,
-                        double *normals, std::int64_t width) {
+                        double *normals, std::uint32_t *degenerate, std::int64_t width) {
   bool reference;
   const std::size_t index = tableIndex(width, reference);
-  return HWY_DISPATCH_TABLE(JetVertices)[index](count, {jet, {offset[0], offset[1], offset[2]}, points, normals},
-                                                reference);
+  return HWY_DISPATCH_TABLE(JetVertices)[index](
+      count, {jet, {offset[0], offset[1], offset[2]}, points, normals, degenerate}, reference);
 }
 
 } // namespace kernels

@@ -488,6 +488,7 @@ void evaluatePlannedInteriors(const Surface &surface, const Layout &layout, cons
                               ProgressCounter &progress, Mesh &mesh) {
   std::vector<std::shared_ptr<const EvaluationPlan>> plans(surface.faceCount());
   const Vec3 origin = surface.origin(); // patches evaluate in the surface's own frame
+  const double offset[3] = {origin.x, origin.y, origin.z};
   std::size_t total = 0;
   const std::vector<Tile> tiles = planTiles(surface, layout.faceResolution, plans, total, wanted);
   forEachTile(tiles, total, [&](const Tile &tile) {
@@ -500,15 +501,13 @@ void evaluatePlannedInteriors(const Surface &surface, const Layout &layout, cons
     patch.evaluatePlannedGroup(plan, tile.samples, [&](int m, std::size_t at, std::size_t size, const double *const r[9]) {
       const std::size_t first = tile.samples.first + m * tile.samples.stride;
       const std::size_t id = layout.faceBase[tile.face] + first + at;
-      const double offset[3] = {origin.x, origin.y, origin.z};
-      const bool degenerate =
-          kernels::jetVertices(size, r, offset, &mesh.positions[id].x, &mesh.normals[id].x) > 0;
-      if (degenerate)
-        for (std::size_t k = 0; k < size; ++k) {
-          const Vec3 du{r[3][k], r[4][k], r[5][k]}, dv{r[6][k], r[7][k], r[8][k]};
-          if (squaredNorm(cross(du, dv)) <= 1e-24 * squaredNorm(du) * squaredNorm(dv))
-            mesh.normals[id + k] = surface.evaluate(tile.face, plan.samples()[first + at + k]).normal;
-        }
+      // Where du and dv are parallel the pointwise evaluation decides the normal.
+      thread_local std::vector<std::uint32_t> degenerate;
+      degenerate.resize(size);
+      const std::size_t flat =
+          kernels::jetVertices(size, r, offset, &mesh.positions[id].x, &mesh.normals[id].x, degenerate.data());
+      for (std::size_t j = 0; j < flat; ++j)
+        mesh.normals[id + degenerate[j]] = surface.evaluate(tile.face, plan.samples()[first + at + degenerate[j]]).normal;
       if (record)
         for (std::size_t k = 0; k < size; ++k) mesh.domainPoints[id + k] = {tile.face, plan.samples()[first + at + k]};
     });

@@ -261,10 +261,12 @@ void gregoryJets(std::size_t count, const GregoryJetSamples &samples, const Greg
 /// normal du × dv / |du × dv| — one square root and one division a point,
 /// the components scaled by the reciprocal length (within 2 ulp of dividing
 /// each; zero where the length is not above zero, as normalized() gives).
-/// Returns how many jets are degenerate, |du × dv|² ≤ 1e-24 |du|² |dv|²,
-/// whose normals the caller replaces.
+/// Returns how many jets are degenerate, |du × dv|² ≤ 1e-24 |du|² |dv|²
+/// (their normals rounding noise, for the caller to replace), and writes
+/// their indices in increasing order to `degenerate` unless it is null
+/// (room for `count`).
 std::size_t jetVertices(std::size_t count, const double *const jet[9], const double offset[3], double *points,
-                        double *normals, std::int64_t width = kBestWidth);
+                        double *normals, std::uint32_t *degenerate = nullptr, std::int64_t width = kBestWidth);
 
 /// Per-sample data of a Composite Ribbon patch ([VSR] Sec. 2). Side i
 /// contributes B_i C_i, its curved ribbon C_i a Coons patch of three
