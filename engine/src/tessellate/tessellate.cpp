@@ -604,10 +604,14 @@ void zipSector(const Surface &surface, const Layout &layout, const BoundaryRows 
       const Vec2 a = p0 * (1.0 - double(k) / r), b = p1 * (1.0 - double(k) / r);
       const int m = r - k;
       upper.resize(static_cast<std::size_t>(m) + 1);
+      // Positions along the row matter only to zip (the first row, or
+      // triangles' domains wanted): zipEven pairs the rows by index.
+      const bool wantPositions = k == 1 || out.domains;
       for (int j = 0; j <= m; ++j) {
         const std::uint32_t id = j == 0 ? spoke(i, k) : (j == m ? spoke(i + 1, k) : offset++);
         RowPoint &point = upper[static_cast<std::size_t>(j)];
-        point.id = id, point.t = double(j) / m;
+        point.id = id;
+        if (wantPositions) point.t = double(j) / m;
         if (wantDomains) {
           point.domain = a + (b - a) * (double(j) / m);
           if (j < m) place(id, point.domain); // the spoke at j = m belongs to the next fan triangle
