@@ -541,7 +541,8 @@ TEST(Kernels, TableEvaluationAgreesAcrossWidthsAndWithHorner) {
   // of one, the engine's tables (kernels specialized for them); the others
   // through the general path: partial rows, tails of one to three, tail only.
   const std::pair<int, int> layouts[] = {{6, 8}, {9, 8}, {3, 4}, {5, 8}, {5, 4}, {9, 12}, {7, 4}, {1, 0}};
-  for (const auto &[dims, padded] : layouts) {
+  for (const auto &layout : layouts) {
+    const int dims = layout.first, padded = layout.second; // named: lambdas below capture them
     const int rowDims = std::min(dims, padded);
     const size_t block = 6 * padded + 8 * (dims - rowDims);
     // Coefficient of t^r, coordinate d, interval j (kernels::PolynomialTable).

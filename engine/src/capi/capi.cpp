@@ -370,6 +370,8 @@ curvenet_status_code curvenet_model_build(const curvenet_curve *curves, size_t c
 
 // ---- Master surfaces given from outside ([SV14] Sec. 5.1) ----------------
 
+// C++ linkage: the helper returns a C++ type (this block is inside extern "C").
+extern "C++" {
 namespace {
 
 /// A C master surface as a BSplineSurface (the facade validates the data).
@@ -394,6 +396,7 @@ Result<BSplineSurface> toSurface(const curvenet_master_surface &m, std::size_t i
 }
 
 } // namespace
+} // extern "C++"
 
 curvenet_status_code curvenet_model_build_with_masters(const curvenet_curve *curves, size_t curve_count,
                                                        const curvenet_face *faces, size_t face_count,
