@@ -7,6 +7,8 @@
 #include <cmath>
 #include <filesystem>
 
+#include "curvenet/approximation.hpp"
+#include "curvenet/builtins.hpp"
 #include "curvenet/error.hpp"
 #include "curvenet/io.hpp"
 #include "curvenet/network.hpp"
@@ -71,6 +73,28 @@ TEST(FuzzRegressions, NativeFiles) {
     SCOPED_TRACE(file.filename().string());
     try {
       exercise(parseNetworkJson(readFile(file), file.string()), file.string());
+    } catch (const InputError &) {
+    }
+  }
+}
+
+TEST(FuzzRegressions, MeshFiles) {
+  // As fuzz_mesh: the mesh read, then the pentagon's curves approximated
+  // over it. The finding there is a mesh with an unreferenced vertex ~1e82
+  // from the rest, whose grid cell overflowed a conversion (undefined: the
+  // sanitizer build of this test reports it).
+  const auto files = inputsOf("fuzz_mesh");
+  EXPECT_FALSE(files.empty());
+  const NetworkDescription curves = polylineNetwork(builtinNetwork("pentagon"), 8);
+  for (const fs::path &file : files) {
+    SCOPED_TRACE(file.filename().string());
+    try {
+      const Mesh mesh = parseMeshText(readFile(file), file.string());
+      ApproximationOptions options;
+      options.resolution = 3, options.curvatureSamples = 2, options.threads = 1;
+      const ApproximationResult result = approximateMesh(mesh, curves, options);
+      for (double figure : {result.g1Deviation.maxAbs, result.g2Deviation.maxAbs, result.curveDistance})
+        EXPECT_FALSE(std::isnan(figure));
     } catch (const InputError &) {
     }
   }

@@ -54,7 +54,17 @@ struct MeshReference::Impl {
     constexpr long long bias = 1 << 20;
     return (std::uint64_t(i + bias) << 42) | (std::uint64_t(j + bias) << 21) | std::uint64_t(k + bias);
   }
-  long long cellOf(double x) const { return static_cast<long long>(std::floor(x / cell)); }
+  /// The grid index of coordinate x, clamped to ±2⁴⁰ cells: a vertex far
+  /// from the rest (a mesh may hold unreferenced vertices anywhere; the
+  /// radius comes from its triangles) would otherwise convert a quotient
+  /// beyond long long's range, which is undefined. Clamped cells share keys
+  /// with others (key() keeps 21 bits an axis anyway); visits compare
+  /// distances, so sharing costs time, never a wrong neighbour.
+  long long cellOf(double x) const {
+    constexpr double kLimit = 0x1p40;
+    const double q = std::floor(x / cell);
+    return static_cast<long long>(q > -kLimit ? (q < kLimit ? q : kLimit) : -kLimit); // NaN: −kLimit
+  }
 
   template <class F> void forEachWithin(const Vec3 &p, double r, F &&visit) const {
     const double r2 = r * r;

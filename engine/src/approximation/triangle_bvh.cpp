@@ -107,14 +107,17 @@ TriangleBvh::Hit TriangleBvh::closest(const Vec3 &p) const {
   stack[top++] = 0;
   while (top > 0) {
     const Node &node = nodes_[stack[--top]];
-    if (boxSquaredDistance(p, node.lo, node.hi) >= best.squaredDistance) continue;
+    // Until a triangle is found nothing is pruned: a point so far out that
+    // its squared distances overflow to infinity (or NaN) still gets a
+    // triangle, with that distance, instead of none.
+    if (best.triangle >= 0 && boxSquaredDistance(p, node.lo, node.hi) >= best.squaredDistance) continue;
     if (node.count > 0) {
       for (int k = node.first; k < node.first + node.count; ++k) {
         const auto &tri = triangles_[order_[k]];
         Vec3 bary;
         const Vec3 q = closestOnTriangle(p, positions_[tri[0]], positions_[tri[1]], positions_[tri[2]], bary);
         const double d = squaredNorm(q - p);
-        if (d < best.squaredDistance) best = {q, order_[k], bary, d};
+        if (best.triangle < 0 || d < best.squaredDistance) best = {q, order_[k], bary, d};
       }
       continue;
     }
