@@ -597,6 +597,10 @@ void zipSector(const Surface &surface, const Layout &layout, const BoundaryRows 
   lower.assign(rows[f][i].begin(), rows[f][i].end());
   std::uint32_t offset = interiorBase + static_cast<std::uint32_t>(i) * perTriangle;
   for (int k = 1; k <= r; ++k) {
+    // From the second row on both rows are the sector's own, evenly spaced:
+    // zipEven pairs them by index, and only zip (the first row, or
+    // triangles' domains wanted) reads a row's positions along it.
+    const bool byIndex = k >= 2 && !out.domains;
     upper.clear();
     if (k == r) {
       upper.push_back({centre, 0.0, {0, 0}});
@@ -604,22 +608,18 @@ void zipSector(const Surface &surface, const Layout &layout, const BoundaryRows 
       const Vec2 a = p0 * (1.0 - double(k) / r), b = p1 * (1.0 - double(k) / r);
       const int m = r - k;
       upper.resize(static_cast<std::size_t>(m) + 1);
-      // Positions along the row matter only to zip (the first row, or
-      // triangles' domains wanted): zipEven pairs the rows by index.
-      const bool wantPositions = k == 1 || out.domains;
       for (int j = 0; j <= m; ++j) {
         const std::uint32_t id = j == 0 ? spoke(i, k) : (j == m ? spoke(i + 1, k) : offset++);
         RowPoint &point = upper[static_cast<std::size_t>(j)];
         point.id = id;
-        if (wantPositions) point.t = double(j) / m;
+        if (!byIndex) point.t = double(j) / m;
         if (wantDomains) {
           point.domain = a + (b - a) * (double(j) / m);
           if (j < m) place(id, point.domain); // the spoke at j = m belongs to the next fan triangle
         }
       }
     }
-    // From the second row on both rows are the sector's own, evenly spaced.
-    if (k >= 2 && !out.domains) zipEven(lower, upper, out);
+    if (byIndex) zipEven(lower, upper, out);
     else zip(lower, upper, out);
     std::swap(lower, upper);
   }
