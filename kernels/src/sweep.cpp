@@ -137,7 +137,7 @@ template <class D, class V = hn::Vec<D>> HWY_INLINE V sweepEndTolerance(D d, dou
 /// bisects each, then applies the selection rule. About 230 polynomial
 /// evaluations per point; the fast path's fallback.
 template <class D, class V = hn::Vec<D>>
-HWY_INLINE void sweepRobust(D d, const ck::SweepFrame &f, V x, V y, V &best, V &bestD) {
+HWY_INLINE void sweepRobust(D d, const ck::SweepFrame &f, double endScale, V x, V y, V &best, V &bestD) {
   const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
   const SweepQuartic<D> q(d, f, x, y);
   const V(&F)[5] = q.F;
@@ -175,7 +175,7 @@ HWY_INLINE void sweepRobust(D d, const ck::SweepFrame &f, V x, V y, V &best, V &
     bestD = hn::IfThenElse(take, dist, bestD);
     bestScore = hn::IfThenElse(take, score, bestScore);
   };
-  const V tolerance = sweepEndTolerance(d, sweepEndScale(f), x, y);
+  const V tolerance = sweepEndTolerance(d, endScale, x, y);
   consider(zero, hn::Le(hn::Abs(horner(F, zero)), tolerance));
   consider(one, hn::Le(hn::Abs(horner(F, one)), tolerance));
   for (int j = 0; j < 4; ++j) {
@@ -352,9 +352,10 @@ HWY_INLINE void sweepFast(D d, const ck::SweepFrame &f, double endScale, const V
   }
 }
 
-template <class D> HWY_INLINE void sweepRobustBody(D d, std::size_t k, const SweepArgs &a) {
+/// endScale: sweepEndScale(a.frame), taken once by the caller.
+template <class D> HWY_INLINE void sweepRobustBody(D d, std::size_t k, const SweepArgs &a, double endScale) {
   hn::Vec<D> s, dist;
-  sweepRobust(d, a.frame, hn::LoadU(d, a.x + k), hn::LoadU(d, a.y + k), s, dist);
+  sweepRobust(d, a.frame, endScale, hn::LoadU(d, a.x + k), hn::LoadU(d, a.y + k), s, dist);
   hn::StoreU(s, d, a.s + k);
   hn::StoreU(dist, d, a.d + k);
 }
@@ -404,7 +405,7 @@ template <class D> HWY_INLINE std::size_t sweepFastThenRobust(D d, std::size_t c
     for (; k < end; ++k) group.template operator()<1>(hn::CappedTag<double, 1>(), k);
     if (failed == 0) continue;
     const SweepArgs gathered{a.frame, fx, fy, fs, fd};
-    forEachVector(d, failed, [&](auto dd, std::size_t j) { sweepRobustBody(dd, j, gathered); });
+    forEachVector(d, failed, [&](auto dd, std::size_t j) { sweepRobustBody(dd, j, gathered, endScale); });
     for (std::size_t j = 0; j < failed; ++j) a.s[index[j]] = fs[j], a.d[index[j]] = fd[j];
     total += failed;
   }
@@ -446,7 +447,8 @@ std::size_t SweepRoots(std::size_t count, const SweepArgs &args, bool reference)
 }
 
 void SweepRootsRobust(std::size_t count, const SweepArgs &args, bool reference) {
-  auto body = [&](auto d, std::size_t k) { sweepRobustBody(d, k, args); };
+  const double endScale = sweepEndScale(args.frame);
+  auto body = [&](auto d, std::size_t k) { sweepRobustBody(d, k, args, endScale); };
   if (reference) forEachVector(hn::CappedTag<double, 1>(), count, body);
   else forEachVector(hn::ScalableTag<double>(), count, body);
 }
