@@ -205,21 +205,25 @@ template <class D, class V> HWY_INLINE void g2RationalWeightJets(D d, V s, V t, 
 template <class D, class V>
 HWY_INLINE void addG2RationalJet(D d, std::size_t k, V s, V t, const ck::GregoryCornerTerms &terms, const double *shared,
                                  std::size_t stride, V (&q)[3][3]) {
-  V rho[8], rhoS[8], rhoT[8];
-  if (shared) {
-    for (int j = 0; j < 8; ++j)
-      rho[j] = hn::LoadU(d, shared + j * stride + k), rhoS[j] = hn::LoadU(d, shared + (8 + j) * stride + k),
-      rhoT[j] = hn::LoadU(d, shared + (16 + j) * stride + k);
-  } else {
-    g2RationalWeightJets(d, s, t, rho, rhoS, rhoT);
-  }
-  for (int j = 0; j < 8; ++j)
+  auto add = [&](int j, V rho, V rhoS, V rhoT) {
     for (int c = 0; c < 3; ++c) {
       const V R = hn::Set(d, terms.rational[j][c]);
-      q[0][c] = hn::MulAdd(rho[j], R, q[0][c]);
-      q[1][c] = hn::MulAdd(rhoS[j], R, q[1][c]);
-      q[2][c] = hn::MulAdd(rhoT[j], R, q[2][c]);
+      q[0][c] = hn::MulAdd(rho, R, q[0][c]);
+      q[1][c] = hn::MulAdd(rhoS, R, q[1][c]);
+      q[2][c] = hn::MulAdd(rhoT, R, q[2][c]);
     }
+  };
+  if (shared) {
+    // Each weight loaded where it is used: loaded all at once, GCC kept
+    // the 24 vectors live and spilled them to the stack, to read them back.
+    for (int j = 0; j < 8; ++j)
+      add(j, hn::LoadU(d, shared + j * stride + k), hn::LoadU(d, shared + (8 + j) * stride + k),
+          hn::LoadU(d, shared + (16 + j) * stride + k));
+    return;
+  }
+  V rho[8], rhoS[8], rhoT[8];
+  g2RationalWeightJets(d, s, t, rho, rhoS, rhoT);
+  for (int j = 0; j < 8; ++j) add(j, rho[j], rhoS[j], rhoT[j]);
 }
 
 /// term −= (1 − μ) Q for a G² corner: Q and its partials in s and t, then
