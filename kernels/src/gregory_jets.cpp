@@ -70,7 +70,7 @@ template <class D, class V = hn::Vec<D>> HWY_INLINE DualV<V> turned(D d, V v, V 
   return {v, hn::MulSub(c, g1, hn::Mul(t, g2)), hn::MulAdd(t, g1, hn::Mul(c, g2))};
 }
 
-template <bool Parabolic, class D>
+template <bool Saturable, class D>
 HWY_INLINE CornerParameters<hn::Vec<D>> cornerParameters(D d, std::size_t k, const ck::GregoryJetSamples &in, int i,
                                                          int prev) {
   using V = hn::Vec<D>;
@@ -80,7 +80,7 @@ HWY_INLINE CornerParameters<hn::Vec<D>> cornerParameters(D d, std::size_t k, con
   p.sp = turned(d, load(in.values.s[prev]), load(in.sDu[prev]), load(in.sDv[prev]), in.sideTurn[prev]);
   p.t = {hn::Sub(hn::Set(d, 1.0), p.sp.v), hn::Neg(p.sp.u), hn::Neg(p.sp.w)};
   p.sc = p.s, p.tc = p.t;
-  if constexpr (Parabolic) {
+  if constexpr (Saturable) {
     auto saturate = [&](DualV<V> &x, double reach) {
       if (reach >= 1) return;
       V slope;
@@ -202,7 +202,7 @@ template <class D, class V> HWY_INLINE void g2RationalWeightJets(D d, V s, V t, 
 /// The rational part Σ_j ρ_j rational[j] of a G² correction patch added to
 /// q, its weights computed (g2RationalWeightJets) or, given `shared`,
 /// loaded: rows j, 8 + j, 16 + j of sample k at shared[row · stride + k].
-template <class D, class V>
+template <bool Loaded, class D, class V>
 HWY_INLINE void addG2RationalJet(D d, std::size_t k, V s, V t, const ck::GregoryCornerTerms &terms, const double *shared,
                                  std::size_t stride, V (&q)[3][3]) {
   auto add = [&](int j, V rho, V rhoS, V rhoT) {
@@ -213,7 +213,7 @@ HWY_INLINE void addG2RationalJet(D d, std::size_t k, V s, V t, const ck::Gregory
       q[2][c] = hn::MulAdd(rhoT, R, q[2][c]);
     }
   };
-  if (shared) {
+  if (Loaded || shared) {
     // Each weight loaded where it is used: loaded all at once, GCC kept
     // the 24 vectors live and spilled them to the stack, to read them back.
     for (int j = 0; j < 8; ++j)
@@ -221,19 +221,21 @@ HWY_INLINE void addG2RationalJet(D d, std::size_t k, V s, V t, const ck::Gregory
           hn::LoadU(d, shared + (16 + j) * stride + k));
     return;
   }
-  V rho[8], rhoS[8], rhoT[8];
-  g2RationalWeightJets(d, s, t, rho, rhoS, rhoT);
-  for (int j = 0; j < 8; ++j) add(j, rho[j], rhoS[j], rhoT[j]);
+  if constexpr (!Loaded) {
+    V rho[8], rhoS[8], rhoT[8];
+    g2RationalWeightJets(d, s, t, rho, rhoS, rhoT);
+    for (int j = 0; j < 8; ++j) add(j, rho[j], rhoS[j], rhoT[j]);
+  }
 }
 
 /// term −= (1 − μ) Q for a G² corner: Q and its partials in s and t, then
 /// the chain rule through sc and tc once per corner, not per term.
-template <class D, class V>
+template <bool Loaded, class D, class V>
 HWY_INLINE void subtractG2Correction(D d, std::size_t k, const CornerParameters<V> &p, const ck::GregoryCornerTerms &terms,
                                      double mu, const double *shared, std::size_t stride, V (&term)[3][3]) {
   V q[3][3]; // [value, ∂/∂s, ∂/∂t][x, y, z]
   g2TaylorJet(d, p.sc.v, p.tc.v, terms, q);
-  addG2RationalJet(d, k, p.sc.v, p.tc.v, terms, shared, stride, q);
+  addG2RationalJet<Loaded>(d, k, p.sc.v, p.tc.v, terms, shared, stride, q);
   if (mu != 0) {
     const V keep = hn::Set(d, 1.0 - mu);
     for (auto &row : q)
@@ -285,9 +287,17 @@ HWY_INLINE void subtractG1Correction(D d, const CornerParameters<V> &p, const ck
 
 /// The Gregory formula's jet at samples k … k + lanes − 1:
 /// Σ_i B_i I_i with the product rule, I_i = R_{i−1} + R_i − Q_i with corner
-/// i's blend share taken from the two-ribbon blend.
-template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size_t k, const GregoryJetArgs &a) {
+/// i's blend share taken from the two-ribbon blend. Loaded: a G² patch
+/// whose cross parameters do not saturate and whose corners' weights are
+/// all given (GregoryJetSamples::weightJets; the tessellation's rotation
+/// groups), an instance of its own as gregoryBody's are: with the branches
+/// to saturation and to computed weights in the same code, GCC stored the
+/// corner's parameters and its correction's polynomial part to the stack
+/// for paths this patch never takes.
+template <bool Parabolic, bool Loaded, class D>
+HWY_INLINE void gregoryJetBody(D d, std::size_t k, const GregoryJetArgs &a) {
   using V = hn::Vec<D>;
+  static_assert(Parabolic || !Loaded, "given weights are G² only");
   const ck::GregoryJetSamples &in = *a.in;
   const int n = in.values.sides;
   V acc[3][3]; // [value, du, dv][x, y, z]
@@ -295,17 +305,20 @@ template <bool Parabolic, class D> HWY_INLINE void gregoryJetBody(D d, std::size
     for (V &x : row) x = hn::Zero(d);
   for (int i = 0; i < n; ++i) {
     const int prev = i == 0 ? n - 1 : i - 1;
-    const CornerParameters<V> p = cornerParameters<Parabolic>(d, k, in, i, prev);
+    const CornerParameters<V> p = cornerParameters<Parabolic && !Loaded>(d, k, in, i, prev);
     const double mu = in.values.blendShare[i];
     V term[3][3];
     ribbonTerms<Parabolic>(d, k, in, i, prev, p, ribbonShares<Parabolic>(d, p, mu), mu, term);
     if (mu == 1) {
       // The two-ribbon blend alone: no correction patch.
+    } else if constexpr (Loaded) {
+      subtractG2Correction<true>(d, k, p, a.terms[i], mu, in.weightJets[i], in.weightJetStride, term);
     } else if constexpr (Parabolic) {
       // Shared weights are of the parameters themselves: not at a corner
       // whose cross parameters saturate.
       const bool shared = in.weightJets[i] && in.values.reach[prev] >= 1 && in.values.reach[i] >= 1;
-      subtractG2Correction(d, k, p, a.terms[i], mu, shared ? in.weightJets[i] : nullptr, in.weightJetStride, term);
+      subtractG2Correction<false>(d, k, p, a.terms[i], mu, shared ? in.weightJets[i] : nullptr, in.weightJetStride,
+                                  term);
     } else {
       subtractG1Correction(d, p, a.corners[i], mu, term);
     }
@@ -340,9 +353,17 @@ void GregoryCornerWeightJets(std::size_t count, const CornerWeightJetArgs &a, bo
 }
 
 void GregoryJets(std::size_t count, const GregoryJetArgs &args, bool reference) {
-  if (args.in->values.parabolic) forEachVectorOrReference(reference, count,
-      [&](auto d, std::size_t k) { gregoryJetBody<true>(d, k, args); });
-  else forEachVectorOrReference(reference, count, [&](auto d, std::size_t k) { gregoryJetBody<false>(d, k, args); });
+  const ck::GregoryJetSamples &in = *args.in;
+  auto run = [&]<bool Parabolic, bool Loaded>() {
+    forEachVectorOrReference(reference, count,
+                             [&](auto d, std::size_t k) { gregoryJetBody<Parabolic, Loaded>(d, k, args); });
+  };
+  bool loaded = in.values.parabolic;
+  for (int i = 0; i < in.values.sides; ++i)
+    loaded = loaded && in.values.reach[i] >= 1 && (in.weightJets[i] || in.values.blendShare[i] == 1);
+  if (loaded) run.template operator()<true, true>();
+  else if (in.values.parabolic) run.template operator()<true, false>();
+  else run.template operator()<false, false>();
 }
 
 } // namespace HWY_NAMESPACE
