@@ -104,6 +104,10 @@ public:
   /// blend[0 .. 2][j], j = k − first.
   SideBlendArrays sidesAndBlends(int i, std::size_t first, std::size_t count, double *const s[3],
                                  double *const blend[3]) const;
+  /// Asks the cache for side 0's parameters and corner 0's blends with
+  /// their gradients at samples [first, first + count) (the arrays
+  /// sidesAndBlends reads) ahead of their use; a hint, no effect on results.
+  void prefetchSidesAndBlends(std::size_t first, std::size_t count) const;
 
   /// The tessellator's boundary rows of a uniform layout: every side's
   /// parameter and every corner's blend with their gradients at the samples

@@ -446,6 +446,16 @@ void Patch::evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPla
       },
       [&](int m, std::size_t offset, std::size_t count, const double *const *cornerWeights, std::size_t stride) {
         const std::size_t first = group.first + m * group.stride + offset;
+        // Every member reads the others' side data, megabytes at high
+        // resolutions that the first member to read misses in the cache:
+        // the next block's of member m + 1 asked for while m computes, so
+        // that a block offset's members ask for all the next one's.
+        // TessellateCpu G² −2 to −5 % (four sets of seven to fifteen
+        // alternating runs); on the face interiors, whose positions read two
+        // arrays instead of six, no clear gain.
+        if (offset + count < group.count)
+          plan.prefetchSidesAndBlends(group.first + ((m + 1) % group.members) * group.stride + offset + count,
+                                      std::min(count, group.count - offset - count));
         gregoryJetsFrom(
             count,
             [&](int i, std::size_t block, std::size_t size, double *const s[3], double *const b[3]) {
