@@ -79,13 +79,14 @@ void zip(const std::vector<RowPoint> &lower, const std::vector<RowPoint> &upper,
 /// zip's order they alternate, L(j, j) U(j + 1, j), until both rows end at
 /// t = 1, where the lower triangle comes first: L(m − 2, m − 2),
 /// L(m − 1, m − 2), U(m, m − 2) for m upper points.
-void zipEven(const std::vector<RowPoint> &lower, const std::vector<RowPoint> &upper, TriangleSink &out) {
+/// The rows are their points' ids alone: zipEven reads nothing else.
+void zipEven(const std::vector<std::uint32_t> &lower, const std::vector<std::uint32_t> &upper, TriangleSink &out) {
   const std::size_t m = upper.size();
   CURVENET_CHECK(m >= 1 && lower.size() == m + 1 && out.written + 2 * m - 1 <= out.capacity,
                  "a sector makes more triangles than its rows allow");
   std::array<std::uint32_t, 3> *t = out.triangles + out.written;
-  auto L = [&](std::size_t j, std::size_t l) { *t++ = {lower[j].id, lower[j + 1].id, upper[l].id}; };
-  auto U = [&](std::size_t j, std::size_t l) { *t++ = {lower[j].id, upper[l + 1].id, upper[l].id}; };
+  auto L = [&](std::size_t j, std::size_t l) { *t++ = {lower[j], lower[j + 1], upper[l]}; };
+  auto U = [&](std::size_t j, std::size_t l) { *t++ = {lower[j], upper[l + 1], upper[l]}; };
   if (m == 1) {
     L(0, 0);
   } else {
@@ -594,34 +595,35 @@ void zipSector(const Surface &surface, const Layout &layout, const BoundaryRows 
   // Domain points are wanted only for samples evaluated here or triangles' domains.
   const bool wantDomains = !planned || domains;
   thread_local std::vector<RowPoint> lower, upper;
+  thread_local std::vector<std::uint32_t> lowerIds, upperIds;
   lower.assign(rows[f][i].begin(), rows[f][i].end());
   std::uint32_t offset = interiorBase + static_cast<std::uint32_t>(i) * perTriangle;
   for (int k = 1; k <= r; ++k) {
     // From the second row on both rows are the sector's own, evenly spaced:
-    // zipEven pairs them by index, and only zip (the first row, or
-    // triangles' domains wanted) reads a row's positions along it.
+    // zipEven pairs them by index from their ids alone, and only zip (the
+    // first row, or triangles' domains wanted) reads a row's points.
     const bool byIndex = k >= 2 && !out.domains;
-    upper.clear();
-    if (k == r) {
-      upper.push_back({centre, 0.0, {0, 0}});
-    } else {
+    const int m = r - k; // the row's last index
+    upperIds.resize(static_cast<std::size_t>(m) + 1);
+    for (int j = 0; j <= m; ++j)
+      upperIds[static_cast<std::size_t>(j)] =
+          k == r ? centre : (j == 0 ? spoke(i, k) : (j == m ? spoke(i + 1, k) : offset++));
+    if (!byIndex || wantDomains) {
       const Vec2 a = p0 * (1.0 - double(k) / r), b = p1 * (1.0 - double(k) / r);
-      const int m = r - k;
-      upper.resize(static_cast<std::size_t>(m) + 1);
+      upper.resize(upperIds.size());
       for (int j = 0; j <= m; ++j) {
-        const std::uint32_t id = j == 0 ? spoke(i, k) : (j == m ? spoke(i + 1, k) : offset++);
         RowPoint &point = upper[static_cast<std::size_t>(j)];
-        point.id = id;
-        if (!byIndex) point.t = double(j) / m;
-        if (wantDomains) {
-          point.domain = a + (b - a) * (double(j) / m);
-          if (j < m) place(id, point.domain); // the spoke at j = m belongs to the next fan triangle
-        }
+        point.id = upperIds[static_cast<std::size_t>(j)];
+        point.t = m ? double(j) / m : 0.0;
+        point.domain = k == r ? Vec2{0, 0} : a + (b - a) * point.t;
+        // The centre is placed with sector 0, the spoke at j = m belongs to
+        // the next fan triangle.
+        if (wantDomains && k < r && j < m) place(point.id, point.domain);
       }
     }
-    if (byIndex) zipEven(lower, upper, out);
+    if (byIndex) zipEven(lowerIds, upperIds, out);
     else zip(lower, upper, out);
-    std::swap(lower, upper);
+    std::swap(lower, upper), std::swap(lowerIds, upperIds);
   }
   CURVENET_CHECK(out.written == sectors.count[item], "face " + std::to_string(f) + " sector " + std::to_string(i) +
                                                          ": triangle count differs from its rows'");
