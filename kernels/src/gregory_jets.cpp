@@ -54,9 +54,9 @@ template <class V> struct DualV {
 
 /// Corner i's parameters with their partials: s = s_i, sp = s_{i−1},
 /// t = 1 − s_{i−1}, and the cross parameters δ = sc of R_{i−1} and δ = tc
-/// of R_i, each saturated at its ribbon's reach (G², GregorySamples::reach)
-/// with the chain rule through r tanh(x / r). Q takes the same pair, the
-/// blends s and t.
+/// of R_i, each saturated at its ribbon's reach (G², GregorySamples::reach;
+/// cornerParameters when Saturable) with the chain rule through
+/// r tanh(x / r). Q takes the same pair, the blends s and t.
 template <class V> struct CornerParameters {
   DualV<V> s, sp, t, sc, tc;
 };
@@ -202,6 +202,7 @@ template <class D, class V> HWY_INLINE void g2RationalWeightJets(D d, V s, V t, 
 /// The rational part Σ_j ρ_j rational[j] of a G² correction patch added to
 /// q, its weights computed (g2RationalWeightJets) or, given `shared`,
 /// loaded: rows j, 8 + j, 16 + j of sample k at shared[row · stride + k].
+/// Loaded: `shared` is always given, and the computing path is left out.
 template <bool Loaded, class D, class V>
 HWY_INLINE void addG2RationalJet(D d, std::size_t k, V s, V t, const ck::GregoryCornerTerms &terms, const double *shared,
                                  std::size_t stride, V (&q)[3][3]) {
