@@ -581,6 +581,14 @@ TEST(Kernels, TableEvaluationAgreesAcrossWidthsAndWithHorner) {
       if (steps <= 1) table.cellFirstEnd = firstEnd.data();
       std::vector<double> s(kCount);
       for (double &x : s) x = unit(rng);
+      // From the middle on, runs of eight as a tessellation's rows give
+      // them: each run inside one interval (the eight-lane kernel's
+      // broadcast path), every third one across an interval's end.
+      for (size_t run = kCount / 16; 8 * run + 8 <= kCount; ++run) {
+        const size_t j = run % (m - 1);
+        const double from = run % 3 == 2 ? 0.5 * (starts[j] + ends[j]) : starts[j], to = run % 3 == 2 ? ends[j + 1] : ends[j];
+        for (size_t q = 0; q < 8; ++q) s[8 * run + q] = from + (to - from) * (0.05 + 0.9 * unit(rng));
+      }
       s[0] = 0, s[1] = 1, s[2] = edges[3]; // the ends, and a break (the interval to its left)
       std::vector<double> horner(dims * kCount), hornerSlope(dims * kCount);
       for (size_t k = 0; k < kCount; ++k) {

@@ -159,6 +159,34 @@ HWY_INLINE void tailPolynomial(D d, const double *const (&c)[4], V t, V inverseW
   if constexpr (Slopes) slope = hn::Mul(dv, inverseWidth);
 }
 
+/// The samples k … k + lanes − 1 of D when they share one interval, whose
+/// coefficients start at c: the lanes run across the samples from the start
+/// and every coefficient is a broadcast, so no transposes, which cost the
+/// other blocks as many vector operations as their polynomials. The same
+/// operations lane by lane as the transposing paths: the same bits.
+template <bool Slopes, class D, class V = hn::Vec<D>>
+HWY_INLINE void oneIntervalPolynomials(D d, const double *c, std::size_t row, std::size_t rowDims, std::size_t tail, V t,
+                                       V inverseWidth, double *const *values, double *const *slopes, std::size_t k) {
+  auto coordinate = [&](const double *at, std::size_t step, double *value, double *slope) {
+    const V coefficient[6] = {hn::Set(d, at[0]),        hn::Set(d, at[step]),     hn::Set(d, at[2 * step]),
+                              hn::Set(d, at[3 * step]), hn::Set(d, at[4 * step]), hn::Set(d, at[5 * step])};
+    V v, dv;
+    quintic<Slopes>(coefficient, t, v, dv);
+    hn::StoreU(v, d, value + k);
+    if constexpr (Slopes) hn::StoreU(hn::Mul(dv, inverseWidth), d, slope + k);
+  };
+  for (std::size_t x = 0; x < rowDims; ++x) coordinate(c + x, row, values[x], Slopes ? slopes[x] : nullptr);
+  for (std::size_t e = 0; e < tail; ++e)
+    coordinate(c + 6 * row + 8 * e, 1, values[rowDims + e], Slopes ? slopes[rowDims + e] : nullptr);
+}
+
+/// Whether the `lanes` intervals from `interval` on are all the same.
+template <class D> HWY_INLINE bool oneInterval(D d, const std::size_t *interval) {
+  const hn::Rebind<std::uint64_t, D> du;
+  const auto *at = reinterpret_cast<const std::uint64_t *>(interval);
+  return hn::AllTrue(du, hn::Eq(hn::Load(du, at), hn::Set(du, at[0])));
+}
+
 /// RibbonTable evaluation of four samples at a time over D with four lanes:
 /// the row coordinates with the lanes across the coordinates, the four
 /// samples transposed in registers so that the structure-of-arrays outputs
@@ -166,8 +194,9 @@ HWY_INLINE void tailPolynomial(D d, const double *const (&c)[4], V t, V inverseW
 /// the samples. The layout known at compile time (kRow > 0: the engine's
 /// tables, 6 row coordinates in rows of 8 for G¹ ribbons P, T; 8 and a tail
 /// of 1 for G² P, T, C) unrolls every loop and keeps the output pointers in
-/// registers; kRow = 0 reads it from the table. Returns the samples done (a
-/// multiple of four); the rest is the caller's.
+/// registers; kRow = 0 reads it from the table. Four samples in one interval
+/// take oneIntervalPolynomials. Returns the samples done (a multiple of
+/// four); the rest is the caller's.
 template <bool Slopes, std::size_t kRowDims, std::size_t kRow, std::size_t kTail, class D>
 HWY_INLINE std::size_t evaluateTableFours(D d, std::size_t count, const TableArgs &a) {
   using V = hn::Vec<D>;
@@ -187,6 +216,13 @@ HWY_INLINE std::size_t evaluateTableFours(D d, std::size_t count, const TableArg
     const std::size_t chunkEnd = std::min(count, chunkStart + kChunk);
     tableLookups<Slopes>(d, tb, a.s, chunkStart, chunkEnd, interval, local, inverse);
     for (k = chunkStart; k + 4 <= chunkEnd; k += 4) {
+      const std::size_t first = k - chunkStart;
+      if (oneInterval(d, interval + first)) {
+        oneIntervalPolynomials<Slopes>(d, tb.coefficients + interval[first] * block, row, rowDims, tail,
+                                       hn::Load(d, local + first), Slopes ? hn::Load(d, inverse + first) : hn::Zero(d),
+                                       values, slopes, k);
+        continue;
+      }
       const double *c[4];
       V t[4], w[4];
       for (std::size_t q = 0; q < 4; ++q) {
@@ -259,7 +295,8 @@ template <class D, class V = hn::Vec<D>> HWY_INLINE void transpose8(D d, const V
 /// per sample one vector per coefficient row instead of two, eight samples
 /// transposed at a time, the tail's eight samples across the lanes. Half the
 /// loads and multiply-adds of four lanes; the table took 57 % of the face
-/// interiors' time at four. Returns the samples done (a multiple of eight).
+/// interiors' time at four. Eight samples in one interval take
+/// oneIntervalPolynomials. Returns the samples done (a multiple of eight).
 template <bool Slopes, std::size_t kRowDims, std::size_t kTail, class D>
 HWY_INLINE std::size_t evaluateTableEights(D d, std::size_t count, const TableArgs &a) {
   using V = hn::Vec<D>;
@@ -274,6 +311,15 @@ HWY_INLINE std::size_t evaluateTableEights(D d, std::size_t count, const TableAr
     const std::size_t chunkEnd = std::min(count, chunkStart + kChunk);
     tableLookups<Slopes>(hn::CappedTag<double, 4>(), tb, a.s, chunkStart, chunkEnd, interval, local, inverse);
     for (k = chunkStart; k + 8 <= chunkEnd; k += 8) {
+      const std::size_t first = k - chunkStart;
+      if (oneInterval(d, interval + first)) {
+        // On pentagon r256 three blocks in ten of a G² tessellation; the
+        // others span two to eight intervals.
+        oneIntervalPolynomials<Slopes>(d, tb.coefficients + interval[first] * kBlock, kRow, kRowDims, kTail,
+                                       hn::Load(d, local + first), Slopes ? hn::Load(d, inverse + first) : hn::Zero(d),
+                                       values, slopes, k);
+        continue;
+      }
       const double *c[8];
       V value[8], slope[8], column[8];
       for (std::size_t q = 0; q < 8; ++q) {
