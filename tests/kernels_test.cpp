@@ -1006,3 +1006,36 @@ TEST(Kernels, JetVerticesAreOffsetPointsAndUnitNormalsAtEveryWidth) {
     }
   }
 }
+
+TEST(Kernels, RowTrianglesAreTheZipOrderAtEveryWidth) {
+  std::mt19937 rng(11);
+  // Every row length up to a few vectors of any width, ids at random: each
+  // triangle checked against the order the header gives, written out here
+  // triangle by triangle.
+  for (size_t m = 1; m <= 70; ++m) {
+    std::vector<std::uint32_t> lower(m + 1), upper(m);
+    for (auto &id : lower) id = static_cast<std::uint32_t>(rng());
+    for (auto &id : upper) id = static_cast<std::uint32_t>(rng());
+    std::vector<std::array<std::uint32_t, 3>> expected;
+    if (m == 1) {
+      expected.push_back({lower[0], lower[1], upper[0]});
+    } else {
+      for (size_t j = 0; j + 2 < m; ++j) {
+        expected.push_back({lower[j], lower[j + 1], upper[j]});
+        expected.push_back({lower[j + 1], upper[j + 1], upper[j]});
+      }
+      expected.push_back({lower[m - 2], lower[m - 1], upper[m - 2]});
+      expected.push_back({lower[m - 1], lower[m], upper[m - 2]});
+      expected.push_back({lower[m], upper[m - 1], upper[m - 2]});
+    }
+    ASSERT_EQ(expected.size(), 2 * m - 1);
+    for (const auto &w : ck::availableWidths()) {
+      // One guard triangle past the end: nothing is written beyond 2m − 1.
+      std::vector<std::array<std::uint32_t, 3>> triangles(2 * m, {7, 7, 7});
+      ck::zipRows(m, lower.data(), upper.data(), triangles[0].data(), w.id);
+      EXPECT_EQ(triangles.back(), (std::array<std::uint32_t, 3>{7, 7, 7})) << w.name << " m " << m;
+      triangles.pop_back();
+      EXPECT_EQ(triangles, expected) << w.name << " m " << m;
+    }
+  }
+}

@@ -16,6 +16,7 @@
 #include <fstream>
 #include <limits>
 #include <numbers>
+#include <numeric>
 #include <optional>
 #include <string>
 
@@ -78,21 +79,15 @@ void zip(const std::vector<RowPoint> &lower, const std::vector<RowPoint> &upper,
 /// L(j, l) = (l_j, l_{j+1}, u_l), upper U(j, l) = (l_j, u_{l+1}, u_l): in
 /// zip's order they alternate, L(j, j) U(j + 1, j), until both rows end at
 /// t = 1, where the lower triangle comes first: L(m − 2, m − 2),
-/// L(m − 1, m − 2), U(m, m − 2) for m upper points.
+/// L(m − 1, m − 2), U(m, m − 2) for m upper points — the order of
+/// kernels::zipRows, which writes them a vector at a time.
 /// The rows are their points' ids alone: zipEven reads nothing else.
 void zipEven(const std::vector<std::uint32_t> &lower, const std::vector<std::uint32_t> &upper, TriangleSink &out) {
   const std::size_t m = upper.size();
   CURVENET_CHECK(m >= 1 && lower.size() == m + 1 && out.written + 2 * m - 1 <= out.capacity,
                  "a sector makes more triangles than its rows allow");
-  std::array<std::uint32_t, 3> *t = out.triangles + out.written;
-  auto L = [&](std::size_t j, std::size_t l) { *t++ = {lower[j], lower[j + 1], upper[l]}; };
-  auto U = [&](std::size_t j, std::size_t l) { *t++ = {lower[j], upper[l + 1], upper[l]}; };
-  if (m == 1) {
-    L(0, 0);
-  } else {
-    for (std::size_t j = 0; j + 2 < m; ++j) L(j, j), U(j + 1, j);
-    L(m - 2, m - 2), L(m - 1, m - 2), U(m, m - 2);
-  }
+  static_assert(sizeof(std::array<std::uint32_t, 3>) == 3 * sizeof(std::uint32_t), "triangles as consecutive ids");
+  kernels::zipRows(m, lower.data(), upper.data(), out.triangles[out.written].data());
   out.written += 2 * m - 1;
 }
 
@@ -604,10 +599,16 @@ void zipSector(const Surface &surface, const Layout &layout, const BoundaryRows 
     // first row, or triangles' domains wanted) reads a row's points.
     const bool byIndex = k >= 2 && !out.domains;
     const int m = r - k; // the row's last index
+    // The row: the centre alone at k = r, else its two spokes' points with
+    // the sector's own in between, consecutive ids.
     upperIds.resize(static_cast<std::size_t>(m) + 1);
-    for (int j = 0; j <= m; ++j)
-      upperIds[static_cast<std::size_t>(j)] =
-          k == r ? centre : (j == 0 ? spoke(i, k) : (j == m ? spoke(i + 1, k) : offset++));
+    if (k == r) {
+      upperIds[0] = centre;
+    } else {
+      upperIds.front() = spoke(i, k), upperIds.back() = spoke(i + 1, k);
+      std::iota(upperIds.begin() + 1, upperIds.end() - 1, offset);
+      offset += static_cast<std::uint32_t>(m - 1);
+    }
     if (!byIndex || wantDomains) {
       const Vec2 a = p0 * (1.0 - double(k) / r), b = p1 * (1.0 - double(k) / r);
       upper.resize(upperIds.size());

@@ -268,6 +268,16 @@ void gregoryJets(std::size_t count, const GregoryJetSamples &samples, const Greg
 std::size_t jetVertices(std::size_t count, const double *const jet[9], const double offset[3], double *points,
                         double *normals, std::uint32_t *degenerate = nullptr, std::int64_t width = kBestWidth);
 
+/// The triangles between two rows of vertex ids, `lower` (m + 1 ids) one
+/// longer than `upper` (m ≥ 1 ids), as three ids each into `triangles`
+/// (room for 2m − 1): for j < m − 2 the pair (lower[j], lower[j + 1],
+/// upper[j]) and (lower[j + 1], upper[j + 1], upper[j]), then
+/// (lower[m − 2], lower[m − 1], upper[m − 2]), (lower[m − 1], lower[m],
+/// upper[m − 2]) and (lower[m], upper[m − 1], upper[m − 2]); for m = 1 the
+/// one triangle (lower[0], lower[1], upper[0]). Every width writes the same.
+void zipRows(std::size_t m, const std::uint32_t *lower, const std::uint32_t *upper, std::uint32_t *triangles,
+             std::int64_t width = kBestWidth);
+
 /// Per-sample data of a Composite Ribbon patch ([VSR] Sec. 2). Side i
 /// contributes B_i C_i, its curved ribbon C_i a Coons patch of three
 /// ribbons: R_i at (s_i, d_i), R_{i−1} at (1 − d_i, s_i) and R_{i+1} at
