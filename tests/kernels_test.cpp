@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <complex>
@@ -582,12 +583,36 @@ TEST(Kernels, TableEvaluationAgreesAcrossWidthsAndWithHorner) {
       std::vector<double> s(kCount);
       for (double &x : s) x = unit(rng);
       // From the middle on, runs of eight as a tessellation's rows give
-      // them: each run inside one interval (the eight-lane kernel's
-      // broadcast path), every third one across an interval's end.
+      // them: inside one interval (the kernels' broadcast path), across an
+      // interval's end, rising or falling over a few intervals (the
+      // windowed lookups), up to s = 1 (the window at the table's end), and
+      // out of [0, 1] at either end (the windows refused).
       for (size_t run = kCount / 16; 8 * run + 8 <= kCount; ++run) {
         const size_t j = run % (m - 1);
-        const double from = run % 3 == 2 ? 0.5 * (starts[j] + ends[j]) : starts[j], to = run % 3 == 2 ? ends[j + 1] : ends[j];
-        for (size_t q = 0; q < 8; ++q) s[8 * run + q] = from + (to - from) * (0.05 + 0.9 * unit(rng));
+        double *at = &s[8 * run];
+        switch (run % 6) {
+        case 0:
+        case 1: {
+          const double from = run % 6 ? 0.5 * (starts[j] + ends[j]) : starts[j], to = run % 6 ? ends[j + 1] : ends[j];
+          for (size_t q = 0; q < 8; ++q) at[q] = from + (to - from) * (0.05 + 0.9 * unit(rng));
+          break;
+        }
+        case 2:
+        case 3: { // sorted, rising or falling, over about four intervals
+          const double from = starts[j], to = ends[std::min(m - 1, j + 3)];
+          for (size_t q = 0; q < 8; ++q) at[q] = from + (to - from) * unit(rng);
+          std::sort(at, at + 8);
+          if (run % 6 == 3) std::reverse(at, at + 8);
+          if (run % 12 == 3) at[4] = ends[j]; // on an interval's end: the interval to its left
+          break;
+        }
+        case 4: // the last intervals, up to s = 1
+          for (size_t q = 0; q < 8; ++q) at[q] = 1 - 0.02 * (7 - q) / 7.0;
+          break;
+        default: // out of [0, 1]
+          for (size_t q = 0; q < 8; ++q) at[q] = run % 12 == 5 ? -0.001 * q : 1 + 0.001 * q;
+          break;
+        }
       }
       s[0] = 0, s[1] = 1, s[2] = edges[3]; // the ends, and a break (the interval to its left)
       std::vector<double> horner(dims * kCount), hornerSlope(dims * kCount);
