@@ -639,6 +639,24 @@ TEST(Kernels, TableEvaluationAgreesAcrossWidthsAndWithHorner) {
         for (int d = 0; d < dims; ++d) v[d] = alone[d];
         ck::evaluateTable(kCount, table, s.data(), v.data(), nullptr, w.id);
         EXPECT_EQ(alone.data, values.data) << w.name << " dims " << dims << " in rows of " << padded << ", cells " << cells << " (values alone)";
+        // The tail coefficients also interval after interval (the eight-lane
+        // path permutes them out of a window of intervals): the same bits.
+        std::vector<double> tailByInterval;
+        for (int e = 0; e < dims - rowDims; ++e)
+          for (int r = 0; r < 6; ++r)
+            for (size_t j = 0; j < m; ++j) tailByInterval.push_back(coefficients[at(j, r, rowDims + e)]);
+        if (!tailByInterval.empty()) {
+          ck::PolynomialTable permuted = table;
+          permuted.tailByInterval = tailByInterval.data();
+          Soa other(dims, kCount), otherSlopes(dims, kCount);
+          for (int d = 0; d < dims; ++d) v[d] = other[d], sl[d] = otherSlopes[d];
+          ck::evaluateTable(kCount, permuted, s.data(), v.data(), sl.data(), w.id);
+          EXPECT_EQ(other.data, values.data) << w.name << " dims " << dims << " (tail by interval)";
+          EXPECT_EQ(otherSlopes.data, slopes.data) << w.name << " dims " << dims << " (tail by interval)";
+          for (int d = 0; d < dims; ++d) v[d] = other[d];
+          ck::evaluateTable(kCount, permuted, s.data(), v.data(), nullptr, w.id);
+          EXPECT_EQ(other.data, values.data) << w.name << " dims " << dims << " (tail by interval, values alone)";
+        }
         // The AVX-512 eight-lane path and the four-lane one: the same bits,
         // whichever this CPU takes by default (eightLaneTables).
         for (const bool eight : {false, true}) {

@@ -20,6 +20,8 @@
 #define CURVENET_TABLE_ARGS
 namespace curvenet::kernels_impl {
 namespace ck = curvenet::kernels;
+/// A vector of samples whose intervals are not known to lie in a window.
+inline constexpr std::size_t kNoWindow = ~std::size_t{0};
 struct TableArgs {
   const ck::PolynomialTable *table;
   const double *s;
@@ -140,7 +142,7 @@ HWY_NOINLINE void tableLookups(D d, const ck::PolynomialTable &tb, const double 
 template <bool Inverse, class D>
 HWY_NOINLINE void tableLookupsWindowed(D d, const ck::PolynomialTable &tb, const double *HWY_RESTRICT s, std::size_t k,
                                        std::size_t end, std::size_t *HWY_RESTRICT interval, double *HWY_RESTRICT local,
-                                       double *HWY_RESTRICT inverse) {
+                                       double *HWY_RESTRICT inverse, std::size_t *HWY_RESTRICT windows) {
   using V = hn::Vec<D>;
   const hn::RebindToSigned<D> di;
   const std::size_t lanes = hn::Lanes(d), intervals = tb.intervals;
@@ -171,17 +173,21 @@ HWY_NOINLINE void tableLookupsWindowed(D d, const ck::PolynomialTable &tb, const
                reinterpret_cast<std::int64_t *>(interval) + (q - k));
     hn::StoreU(hn::Mul(hn::Sub(x, start), w), d, local + (q - k));
     if constexpr (Inverse) hn::StoreU(w, d, inverse + (q - k));
+    windows[(q - k) / lanes] = first;
   }
+  for (std::size_t v = q; v + lanes <= end; v += lanes) windows[(v - k) / lanes] = kNoWindow;
   if (q < end) tableLookups<Inverse>(hn::CappedTag<double, 4>(), tb, s, q, end, interval + (q - k), local + (q - k), inverse + (q - k));
 }
 
 /// The lookups of s[k .. end) (see tableLookups), windowed where the
-/// table's cells allow (tableLookupsWindowed).
+/// table's cells allow (tableLookupsWindowed); each vector's window start
+/// into windows[v] (kNoWindow: none).
 template <bool Inverse, class D>
 HWY_INLINE void lookUp(D d, const ck::PolynomialTable &tb, const double *s, std::size_t k, std::size_t end,
-                       std::size_t *interval, double *local, double *inverse) {
-  if ((tb.cells & (tb.cells - 1)) == 0) tableLookupsWindowed<Inverse>(d, tb, s, k, end, interval, local, inverse);
-  else tableLookups<Inverse>(hn::CappedTag<double, 4>(), tb, s, k, end, interval, local, inverse);
+                       std::size_t *interval, double *local, double *inverse, std::size_t *windows) {
+  if ((tb.cells & (tb.cells - 1)) == 0) return tableLookupsWindowed<Inverse>(d, tb, s, k, end, interval, local, inverse, windows);
+  tableLookups<Inverse>(hn::CappedTag<double, 4>(), tb, s, k, end, interval, local, inverse);
+  for (std::size_t v = 0; (v + 1) * hn::Lanes(d) <= end - k; ++v) windows[v] = kNoWindow;
 }
 
 /// The 4 × 4 transpose: r[q][c] → column c = (r[0][c], …, r[3][c]), for
@@ -272,12 +278,12 @@ HWY_INLINE std::size_t evaluateTableFours(D d, std::size_t count, const TableArg
   double *values[kOut], *slopes[kOut];
   for (std::size_t x = 0; x < dims; ++x) values[x] = a.values[x], slopes[x] = Slopes ? a.slopes[x] : nullptr;
   constexpr std::size_t kChunk = 64;
-  HWY_ALIGN std::size_t interval[kChunk];
+  HWY_ALIGN std::size_t interval[kChunk], windows[kChunk / 4];
   HWY_ALIGN double local[kChunk], inverse[kChunk];
   std::size_t k = 0;
   for (std::size_t chunkStart = 0; chunkStart + 4 <= count; chunkStart += kChunk) {
     const std::size_t chunkEnd = std::min(count, chunkStart + kChunk);
-    lookUp<Slopes>(d, tb, a.s, chunkStart, chunkEnd, interval, local, inverse);
+    lookUp<Slopes>(d, tb, a.s, chunkStart, chunkEnd, interval, local, inverse, windows);
     for (k = chunkStart; k + 4 <= chunkEnd; k += 4) {
       const std::size_t first = k - chunkStart;
       if (oneInterval(d, interval + first)) {
@@ -367,12 +373,12 @@ HWY_INLINE std::size_t evaluateTableEights(D d, std::size_t count, const TableAr
   constexpr std::size_t kRow = 8, kBlock = 6 * kRow + 8 * kTail, kChunk = 64;
   double *values[kRowDims + kTail], *slopes[kRowDims + kTail];
   for (std::size_t x = 0; x < kRowDims + kTail; ++x) values[x] = a.values[x], slopes[x] = Slopes ? a.slopes[x] : nullptr;
-  HWY_ALIGN std::size_t interval[kChunk];
+  HWY_ALIGN std::size_t interval[kChunk], windows[kChunk / 4];
   HWY_ALIGN double local[kChunk], inverse[kChunk];
   std::size_t k = 0;
   for (std::size_t chunkStart = 0; chunkStart + 8 <= count; chunkStart += kChunk) {
     const std::size_t chunkEnd = std::min(count, chunkStart + kChunk);
-    lookUp<Slopes>(d, tb, a.s, chunkStart, chunkEnd, interval, local, inverse);
+    lookUp<Slopes>(d, tb, a.s, chunkStart, chunkEnd, interval, local, inverse, windows);
     for (k = chunkStart; k + 8 <= chunkEnd; k += 8) {
       const std::size_t first = k - chunkStart;
       if (oneInterval(d, interval + first)) {
@@ -397,13 +403,26 @@ HWY_INLINE std::size_t evaluateTableEights(D d, std::size_t count, const TableAr
         transpose8(d, slope, column);
         for (std::size_t x = 0; x < kRowDims; ++x) hn::StoreU(column[x], d, slopes[x] + k);
       }
+      const std::size_t window = windows[(k - chunkStart) / 8];
       for (std::size_t e = 0; e < kTail; ++e) {
-        // Each sample's eight doubles (t⁰ … t⁵, two zeros) → the six
-        // coefficients' eight-sample vectors.
-        V raw[8], column[8];
-        for (std::size_t q = 0; q < 8; ++q) raw[q] = hn::LoadU(d, c[q] + 6 * kRow + 8 * e);
-        transpose8(d, raw, column);
-        const V coefficient[6] = {column[0], column[1], column[2], column[3], column[4], column[5]};
+        V coefficient[6];
+        if (tb.tailByInterval && window != kNoWindow) {
+          // The eight samples' intervals lie in [window, window + 8): each
+          // coefficient's vector permuted out of the window's.
+          const hn::RebindToSigned<D> di;
+          const auto at = hn::IndicesFromVec(
+              d, hn::Sub(hn::Load(di, reinterpret_cast<const std::int64_t *>(interval) + (k - chunkStart)),
+                         hn::Set(di, static_cast<std::int64_t>(window))));
+          const double *from = tb.tailByInterval + 6 * e * tb.intervals + window;
+          for (std::size_t r = 0; r < 6; ++r) coefficient[r] = hn::TableLookupLanes(hn::LoadU(d, from + r * tb.intervals), at);
+        } else {
+          // Each sample's eight doubles (t⁰ … t⁵, two zeros) → the six
+          // coefficients' eight-sample vectors.
+          V raw[8], column[8];
+          for (std::size_t q = 0; q < 8; ++q) raw[q] = hn::LoadU(d, c[q] + 6 * kRow + 8 * e);
+          transpose8(d, raw, column);
+          for (std::size_t r = 0; r < 6; ++r) coefficient[r] = column[r];
+        }
         V v, dv;
         quintic<Slopes>(coefficient, hn::Load(d, local + (k - chunkStart)), v, dv);
         hn::StoreU(v, d, values[kRowDims + e] + k);

@@ -308,6 +308,12 @@ RibbonTable::RibbonTable(int dims, std::vector<double> breaks, const Exact &exac
   for (const FittedInterval &x : fitIntervals(static_cast<std::size_t>(dims), edges, exact, valueError_, slopeError_))
     appendInterval(x.a, x.b, x.coefficients.data());
   buildLookup();
+  const kernels::PolynomialTable layout = view();
+  const std::size_t intervals = starts_.size(), block = layout.blockSize();
+  for (int e = 0; e < layout.tailDims(); ++e)
+    for (int r = 0; r < 6; ++r)
+      for (std::size_t j = 0; j < intervals; ++j)
+        tailByInterval_.push_back(coefficients_[j * block + 6 * static_cast<std::size_t>(paddedDims_) + 8 * e + r]);
 }
 
 void RibbonTable::appendInterval(double a, double b, const double *coefficients) {
@@ -382,11 +388,12 @@ kernels::PolynomialTable RibbonTable::view() const {
   t.starts = starts_.data(), t.ends = ends_.data(), t.inverseWidths = inverseWidths_.data();
   t.coefficients = coefficients_.data(), t.cellFirst = cellFirst_.data();
   t.cellFirstEnd = cellFirstEnd_.empty() ? nullptr : cellFirstEnd_.data();
+  t.tailByInterval = tailByInterval_.empty() ? nullptr : tailByInterval_.data();
   return t;
 }
 
 std::size_t RibbonTable::memory() const {
-  return (starts_.size() * 3 + coefficients_.size() + cellFirstEnd_.size()) * sizeof(double) +
+  return (starts_.size() * 3 + coefficients_.size() + cellFirstEnd_.size() + tailByInterval_.size()) * sizeof(double) +
          cellFirst_.size() * sizeof(std::uint32_t);
 }
 

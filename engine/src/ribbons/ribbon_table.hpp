@@ -83,6 +83,9 @@ private:
   /// then the tail coordinates (kernels::PolynomialTable); on a cache line,
   /// so that the kernel's four-double loads never straddle two.
   kernels::AlignedVector<double> coefficients_;
+  /// The tail coordinates' coefficients interval after interval
+  /// (kernels::PolynomialTable::tailByInterval).
+  std::vector<double> tailByInterval_;
   std::vector<std::uint32_t> cellFirst_;
   std::vector<double> cellFirstEnd_; ///< when steps_ ≤ 1: see kernels::PolynomialTable
   std::size_t cells_ = 0;

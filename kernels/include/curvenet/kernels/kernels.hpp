@@ -99,6 +99,12 @@ struct PolynomialTable {
   const double *starts = nullptr, *ends = nullptr, *inverseWidths = nullptr, *coefficients = nullptr;
   const std::uint32_t *cellFirst = nullptr;
   const double *cellFirstEnd = nullptr;
+  /// Optional: the tail coordinates' coefficients again, interval after
+  /// interval — t^r of tail coordinate e for interval j at
+  /// [(6e + r) · intervals + j] — from which eight samples in a window of
+  /// eight intervals take them with one permutation each instead of a
+  /// transpose (AVX-512; see evaluateTable).
+  const double *tailByInterval = nullptr;
 };
 
 /// (b) Batched ribbon evaluation: the table at s[0 .. count) into
