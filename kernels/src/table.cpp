@@ -185,9 +185,15 @@ HWY_NOINLINE void tableLookupsWindowed(D d, const ck::PolynomialTable &tb, const
 template <bool Inverse, class D>
 HWY_INLINE void lookUp(D d, const ck::PolynomialTable &tb, const double *s, std::size_t k, std::size_t end,
                        std::size_t *interval, double *local, double *inverse, std::size_t *windows) {
-  if ((tb.cells & (tb.cells - 1)) == 0) return tableLookupsWindowed<Inverse>(d, tb, s, k, end, interval, local, inverse, windows);
+  // The windows' first test here, in line: a batch at random points fails
+  // it at once and goes straight to the scalar lookups.
+  const std::size_t lanes = hn::Lanes(d);
+  const bool close = end - k >= lanes && std::abs(s[k + lanes - 1] - s[k]) * static_cast<double>(tb.intervals) <=
+                                             static_cast<double>(lanes);
+  if (close && (tb.cells & (tb.cells - 1)) == 0)
+    return tableLookupsWindowed<Inverse>(d, tb, s, k, end, interval, local, inverse, windows);
   tableLookups<Inverse>(hn::CappedTag<double, 4>(), tb, s, k, end, interval, local, inverse);
-  for (std::size_t v = 0; (v + 1) * hn::Lanes(d) <= end - k; ++v) windows[v] = kNoWindow;
+  for (std::size_t v = 0; (v + 1) * lanes <= end - k; ++v) windows[v] = kNoWindow;
 }
 
 /// The 4 × 4 transpose: r[q][c] → column c = (r[0][c], …, r[3][c]), for
