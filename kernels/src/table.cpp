@@ -139,6 +139,13 @@ HWY_NOINLINE void tableLookups(D d, const ck::PolynomialTable &tb, const double 
 /// window in vain: 8–12 % slower so). A scalar lookup a sample was
 /// about fourteen instructions with chains of dependent loads: a quarter of
 /// G¹'s face interiors, a fifth of G²'s.
+/// Whether s[q] and s[q + lanes − 1] lie within `lanes` intervals of average
+/// width of each other: farther apart (or NaN), their vector misses any
+/// window — a batch at random points, found for the cost of a subtraction.
+HWY_INLINE bool closeTogether(const double *s, std::size_t q, std::size_t lanes, std::size_t intervals) {
+  return std::abs(s[q + lanes - 1] - s[q]) * static_cast<double>(intervals) <= static_cast<double>(lanes);
+}
+
 template <bool Inverse, class D>
 HWY_NOINLINE void tableLookupsWindowed(D d, const ck::PolynomialTable &tb, const double *HWY_RESTRICT s, std::size_t k,
                                        std::size_t end, std::size_t *HWY_RESTRICT interval, double *HWY_RESTRICT local,
@@ -151,10 +158,7 @@ HWY_NOINLINE void tableLookupsWindowed(D d, const ck::PolynomialTable &tb, const
                *HWY_RESTRICT inverseWidths = tb.inverseWidths;
   std::size_t q = k;
   for (; q + lanes <= end && intervals >= lanes; q += lanes) {
-    // Samples further apart than `lanes` intervals of average width miss
-    // the window (a batch at random points, at once, for the cost of a
-    // subtraction).
-    if (!(std::abs(s[q + lanes - 1] - s[q]) * static_cast<double>(intervals) <= static_cast<double>(lanes))) break;
+    if (!closeTogether(s, q, lanes, intervals)) break;
     const V x = hn::LoadU(d, s + q);
     // The rows run either way along a side: the window starts at the end
     // nearer s = 0, no further than `lanes` from the table's end.
@@ -188,9 +192,7 @@ HWY_INLINE void lookUp(D d, const ck::PolynomialTable &tb, const double *s, std:
   // The windows' first test here, in line: a batch at random points fails
   // it at once and goes straight to the scalar lookups.
   const std::size_t lanes = hn::Lanes(d);
-  const bool close = end - k >= lanes && std::abs(s[k + lanes - 1] - s[k]) * static_cast<double>(tb.intervals) <=
-                                             static_cast<double>(lanes);
-  if (close && (tb.cells & (tb.cells - 1)) == 0)
+  if (end - k >= lanes && closeTogether(s, k, lanes, tb.intervals) && (tb.cells & (tb.cells - 1)) == 0)
     return tableLookupsWindowed<Inverse>(d, tb, s, k, end, interval, local, inverse, windows);
   tableLookups<Inverse>(hn::CappedTag<double, 4>(), tb, s, k, end, interval, local, inverse);
   for (std::size_t v = 0; (v + 1) * lanes <= end - k; ++v) windows[v] = kNoWindow;

@@ -109,11 +109,14 @@ struct PolynomialTable {
 
 /// (b) Batched ribbon evaluation: the table at s[0 .. count) into
 /// values[c][k] and, when slopes is not null, d/ds into slopes[c][k]. Each
-/// sample's interval is looked up, then its row polynomials evaluated with
-/// the coordinates across the SIMD lanes and its tail ones with four
-/// samples across the lanes; on AVX-512, rows of 8 (the engine's layouts)
-/// take eight samples at a time at eight lanes. The reference: one sample
-/// at a time.
+/// sample's interval is looked up — a vector of samples at a time where
+/// they lie within a window of intervals, as a plan's rows do — then its
+/// row polynomials evaluated with the coordinates across the SIMD lanes and
+/// its tail ones with the samples across the lanes; a vector of samples in
+/// one interval takes every coordinate with the samples across the lanes.
+/// On AVX-512, rows of 8 (the engine's layouts) take eight samples at a
+/// time at eight lanes, with the same bits as four. The reference: one
+/// sample at a time.
 void evaluateTable(std::size_t count, const PolynomialTable &table, const double *s, double *const *values,
                    double *const *slopes, std::int64_t width = kBestWidth);
 
