@@ -308,6 +308,10 @@ RibbonTable::RibbonTable(int dims, std::vector<double> breaks, const Exact &exac
   for (const FittedInterval &x : fitIntervals(static_cast<std::size_t>(dims), edges, exact, valueError_, slopeError_))
     appendInterval(x.a, x.b, x.coefficients.data());
   buildLookup();
+  buildTailByInterval();
+}
+
+void RibbonTable::buildTailByInterval() {
   const kernels::PolynomialTable layout = view();
   const std::size_t intervals = starts_.size(), block = layout.blockSize();
   for (int e = 0; e < layout.tailDims(); ++e)

@@ -66,6 +66,9 @@ private:
   /// The lookup grid over the intervals (cells_, cellFirst_, steps_,
   /// cellFirstEnd_).
   void buildLookup();
+  /// The tail coordinates' coefficients again, interval after interval
+  /// (tailByInterval_), from coefficients_.
+  void buildTailByInterval();
   std::uint32_t interval(double s) const {
     const double scaled = s * static_cast<double>(cells_); // NaN or out of [0, 1]: the end cells
     const std::size_t cell = !(scaled > 0) ? 0
