@@ -589,28 +589,28 @@ TEST(Kernels, TableEvaluationAgreesAcrossWidthsAndWithHorner) {
       // out of [0, 1] at either end (the windows refused).
       for (size_t run = kCount / 16; 8 * run + 8 <= kCount; ++run) {
         const size_t j = run % (m - 1);
-        double *at = &s[8 * run];
+        double *runStart = &s[8 * run];
         switch (run % 6) {
         case 0:
         case 1: {
           const double from = run % 6 ? 0.5 * (starts[j] + ends[j]) : starts[j], to = run % 6 ? ends[j + 1] : ends[j];
-          for (size_t q = 0; q < 8; ++q) at[q] = from + (to - from) * (0.05 + 0.9 * unit(rng));
+          for (size_t q = 0; q < 8; ++q) runStart[q] = from + (to - from) * (0.05 + 0.9 * unit(rng));
           break;
         }
         case 2:
         case 3: { // sorted, rising or falling, over about four intervals
           const double from = starts[j], to = ends[std::min(m - 1, j + 3)];
-          for (size_t q = 0; q < 8; ++q) at[q] = from + (to - from) * unit(rng);
-          std::sort(at, at + 8);
-          if (run % 6 == 3) std::reverse(at, at + 8);
-          if (run % 12 == 3) at[4] = ends[j]; // on an interval's end: the interval to its left
+          for (size_t q = 0; q < 8; ++q) runStart[q] = from + (to - from) * unit(rng);
+          std::sort(runStart, runStart + 8);
+          if (run % 6 == 3) std::reverse(runStart, runStart + 8);
+          if (run % 12 == 3) runStart[4] = ends[j]; // on an interval's end: the interval to its left
           break;
         }
         case 4: // the last intervals, up to s = 1
-          for (size_t q = 0; q < 8; ++q) at[q] = 1 - 0.02 * (7 - q) / 7.0;
+          for (size_t q = 0; q < 8; ++q) runStart[q] = 1 - 0.02 * (7 - q) / 7.0;
           break;
         default: // out of [0, 1]
-          for (size_t q = 0; q < 8; ++q) at[q] = run % 12 == 5 ? -0.001 * q : 1 + 0.001 * q;
+          for (size_t q = 0; q < 8; ++q) runStart[q] = run % 12 == 5 ? -0.001 * q : 1 + 0.001 * q;
           break;
         }
       }
