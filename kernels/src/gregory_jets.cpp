@@ -52,16 +52,16 @@ template <class V> struct DualV {
   V v, u, w; // value, ∂/∂u, ∂/∂v
 };
 
-/// Corner i's parameters with their partials: s = s_i, sp = s_{i−1},
+/// Corner i's parameters: s = s_i and sp = s_{i−1} with their gradients,
 /// t = 1 − s_{i−1}, and the cross parameters δ = sc of R_{i−1} and δ = tc
 /// of R_i, each saturated at its ribbon's reach (G², GregorySamples::reach;
-/// cornerParameters when Saturable) with the chain rule through
-/// r tanh(x / r), whose slopes dsc/ds and dtc/dt are scSlope and tcSlope
-/// (1 where the ribbon does not saturate). Q takes the same pair, the
-/// blends s and t.
+/// cornerParameters when Saturable) as r tanh(x / r), with their slopes
+/// dsc/ds and dtc/dt (1 where the ribbon does not saturate). Q takes the
+/// same pair, the blends s and t. (addCornerTerm gathers every gradient by
+/// those of s and sp.)
 template <class V> struct CornerParameters {
-  DualV<V> s, sp, t, sc, tc;
-  V scSlope, tcSlope;
+  DualV<V> s, sp;
+  V t, sc, tc, scSlope, tcSlope;
 };
 
 /// A value and the gradient (g₁, g₂) given in a frame turned by (cos θ,
@@ -87,16 +87,12 @@ HWY_INLINE CornerParameters<V> cornerParameters(D d, const ck::GregoryJetSamples
                                                 const DualV<V> &side, const DualV<V> &previousSide) {
   CornerParameters<V> p;
   p.s = side, p.sp = previousSide;
-  p.t = {hn::Sub(hn::Set(d, 1.0), p.sp.v), hn::Neg(p.sp.u), hn::Neg(p.sp.w)};
-  p.sc = p.s, p.tc = p.t;
+  p.t = hn::Sub(hn::Set(d, 1.0), p.sp.v);
+  p.sc = p.s.v, p.tc = p.t;
   p.scSlope = p.tcSlope = hn::Set(d, 1.0);
   if constexpr (Saturable) {
-    auto saturate = [&](DualV<V> &x, V &slope, double reach) {
-      if (reach >= 1) return;
-      x.v = saturatedCross(d, x.v, reach, &slope);
-      x.u = hn::Mul(slope, x.u), x.w = hn::Mul(slope, x.w);
-    };
-    saturate(p.sc, p.scSlope, in.values.reach[prev]), saturate(p.tc, p.tcSlope, in.values.reach[i]);
+    if (in.values.reach[prev] < 1) p.sc = saturatedCross(d, p.sc, in.values.reach[prev], &p.scSlope);
+    if (in.values.reach[i] < 1) p.tc = saturatedCross(d, p.tc, in.values.reach[i], &p.tcSlope);
   }
   return p;
 }
@@ -230,14 +226,14 @@ HWY_INLINE void addCornerTerm(D d, std::size_t k, const ck::GregoryJetSamples &i
   const ck::GregorySamples &val = in.values;
   auto load = [&](const double *x) { return hn::LoadU(d, x + k); };
   const double mu = val.blendShare[i];
-  const V sc = p.sc.v, tc = p.tc.v;
+  const V sc = p.sc, tc = p.tc;
   // The blend share's weights of R_{i−1} and R_i, 1 − μ (1 − λ) and 1 − μ λ
   // with λ(s, t), and the first's partials μ (λ_s ∇s − λ_t ∇s_{i−1}) (the
   // second's are their negatives).
   V previousShare = hn::Set(d, 1.0), ownShare = previousShare, shareS = hn::Zero(d), shareSp = shareS;
   if (mu != 0) {
     V lambdaS, lambdaT;
-    const V lambda = sideBlendWeight<Parabolic ? 3 : 2>(d, p.s.v, p.t.v, &lambdaS, &lambdaT), m = hn::Set(d, mu);
+    const V lambda = sideBlendWeight<Parabolic ? 3 : 2>(d, p.s.v, p.t, &lambdaS, &lambdaT), m = hn::Set(d, mu);
     previousShare = hn::MulAdd(m, lambda, hn::Set(d, 1.0 - mu)), ownShare = hn::NegMulAdd(m, lambda, ownShare);
     shareS = hn::Mul(m, lambdaS), shareSp = hn::Neg(hn::Mul(m, lambdaT));
   }
@@ -306,8 +302,8 @@ HWY_INLINE void addG2Corner(D d, std::size_t k, const ck::GregoryJetSamples &in,
   const bool corrected = mu != 1;
   V q[3][3];
   if (corrected) {
-    g2TaylorJet(d, p.sc.v, p.tc.v, terms, q);
-    addG2RationalJet<Loaded>(d, k, p.sc.v, p.tc.v, terms, Saturating ? nullptr : in.weightJets[i], in.weightJetStride,
+    g2TaylorJet(d, p.sc, p.tc, terms, q);
+    addG2RationalJet<Loaded>(d, k, p.sc, p.tc, terms, Saturating ? nullptr : in.weightJets[i], in.weightJetStride,
                              q);
     if (mu != 0) {
       const V keep = hn::Set(d, 1.0 - mu);
@@ -326,7 +322,7 @@ HWY_INLINE void addG1Corner(D d, std::size_t k, const ck::GregoryJetSamples &in,
   const double mu = in.values.blendShare[i];
   const bool corrected = mu != 1;
   V q[3][3];
-  if (corrected) g1CorrectionJet(d, p.s.v, p.t.v, corner, mu, q);
+  if (corrected) g1CorrectionJet(d, p.s.v, p.t, corner, mu, q);
   addCornerTerm<false, false>(d, k, in, i, prev, p, blend, q, corrected, acc);
 }
 
