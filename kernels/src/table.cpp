@@ -124,6 +124,13 @@ HWY_NOINLINE void tableLookups(D d, const ck::PolynomialTable &tb, const double 
 }
 
 #if HWY_TARGET != HWY_SCALAR
+/// Whether s[q] and s[q + lanes − 1] lie within `lanes` intervals of average
+/// width of each other: farther apart (or NaN), their vector misses any
+/// window — a batch at random points, found for the cost of a subtraction.
+HWY_INLINE bool closeTogether(const double *s, std::size_t q, std::size_t lanes, std::size_t intervals) {
+  return std::abs(s[q + lanes - 1] - s[q]) * static_cast<double>(intervals) <= static_cast<double>(lanes);
+}
+
 /// tableLookups for samples that lie close together, as a plan's rows do:
 /// a vector of samples at a time whose intervals all lie in the window of
 /// `lanes` intervals from the first or last sample's, whichever is less
@@ -139,13 +146,6 @@ HWY_NOINLINE void tableLookups(D d, const ck::PolynomialTable &tb, const double 
 /// window in vain: 8–12 % slower so). A scalar lookup a sample was
 /// about fourteen instructions with chains of dependent loads: a quarter of
 /// G¹'s face interiors, a fifth of G²'s.
-/// Whether s[q] and s[q + lanes − 1] lie within `lanes` intervals of average
-/// width of each other: farther apart (or NaN), their vector misses any
-/// window — a batch at random points, found for the cost of a subtraction.
-HWY_INLINE bool closeTogether(const double *s, std::size_t q, std::size_t lanes, std::size_t intervals) {
-  return std::abs(s[q + lanes - 1] - s[q]) * static_cast<double>(intervals) <= static_cast<double>(lanes);
-}
-
 template <bool Inverse, class D>
 HWY_NOINLINE void tableLookupsWindowed(D d, const ck::PolynomialTable &tb, const double *HWY_RESTRICT s, std::size_t k,
                                        std::size_t end, std::size_t *HWY_RESTRICT interval, double *HWY_RESTRICT local,
@@ -374,6 +374,9 @@ template <class D, class V = hn::Vec<D>> HWY_INLINE void transpose8(D d, const V
 /// loads and multiply-adds of four lanes; the table took 57 % of the face
 /// interiors' time at four. Eight samples in one interval take
 /// oneIntervalPolynomials. Returns the samples done (a multiple of eight).
+/// Its chunk loop (lookups, then a block at a time) is evaluateTableFours'
+/// at eight: one loop over both with the mixed block as a callable measured
+/// 3–4 % slower on the face interiors, so each keeps its own.
 template <bool Slopes, std::size_t kRowDims, std::size_t kTail, class D>
 HWY_INLINE std::size_t evaluateTableEights(D d, std::size_t count, const TableArgs &a) {
   using V = hn::Vec<D>;
