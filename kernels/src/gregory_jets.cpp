@@ -117,26 +117,50 @@ HWY_INLINE void g2TaylorJet(D d, V s, V t, const ck::GregoryCornerTerms &terms, 
 }
 
 /// The rational weights of a G² correction patch with their partials,
-/// ρ_j = s³ t^r / (s^{3−p} + t^{3−r}) with
-///   ∂ρ/∂s = s² t^r (3 t^{3−r} + p s^{3−p}) / den²,
-///   ∂ρ/∂t = s³ t^{r−1} (r s^{3−p} + (2r − 3) t^{3−r}) / den²  (r = 0: −3 s³ t² / den²),
-/// j counting (p, r) ≠ (0, 0) row by row (gregoryCornerWeightJets stores
-/// the same numbers).
+/// ρ_j = N / D with N = s³ t^r and D = s^{3−p} + t^{3−r}, j counting
+/// (p, r) ≠ (0, 0) row by row (gregoryCornerWeightJets stores the same
+/// numbers). The quotient rule with D's reciprocal in hand,
+///   ∂ρ/∂s = (∂N/∂s − ρ ∂D/∂s) / D,  ∂ρ/∂t = (∂N/∂t − ρ ∂D/∂t) / D,
+/// takes five operations a weight, the monomials N, ∂N and ∂D shared by
+/// the weights of a row or column. Where the difference cancels (p = 0,
+/// t^{3−r} ≪ s³) its error stays below 3ε t^r / s in absolute terms, as
+/// small as the weight's own rounding.
+///
+/// Where a lane's denominators underflow (the corner s = t = 0 itself,
+/// where the partials have no limit) the weights are not a number there:
+/// the batched evaluations take a sample whose jet is not finite from the
+/// pointwise formula (Surface::evaluate), which knows the corner's limit.
+/// (The expanded forms, s² t^r (p s^{3−p} + 3 t^{3−r}) / D² and the like,
+/// gave 0 · ∞ there; computed instead, on a branch of their own, they made
+/// GCC keep all 24 results in memory: a G² tessellation of a real loop 3–5 %
+/// slower.)
 template <class D, class V> HWY_INLINE void g2RationalWeightJets(D d, V s, V t, V (&rho)[8], V (&rhoS)[8], V (&rhoT)[8]) {
   V sp3[4], tp3[4], inv[8];
-  g2CornerWeights(d, s, t, sp3, tp3, inv);
-  // s^2 t^r and s^3 t^r for r = 0, 1, 2, shared by the rows p.
-  const V s2t[3] = {sp3[2], hn::Mul(sp3[2], tp3[1]), hn::Mul(sp3[2], tp3[2])};
-  const V s3t[3] = {sp3[3], hn::Mul(sp3[3], tp3[1]), hn::Mul(sp3[3], tp3[2])};
+  if (HWY_UNLIKELY(g2CornerWeights(d, s, t, sp3, tp3, inv))) {
+    // Denominators below ~1e-154 (s and t below ~1e-77): the expanded
+    // forms' D² overflowed there.
+    const auto corner = hn::Lt(hn::Add(s, t), hn::Set(d, 1e-77));
+    inv[0] = hn::IfThenElse(corner, hn::NaN(d), inv[0]);
+  }
+  const V three = hn::Set(d, 3.0);
+  // N = s³ t^r, ∂N/∂s = 3 s² t^r, ∂N/∂t = r s³ t^{r−1} for r = 0, 1, 2;
+  // ∂D/∂s = (3 − p) s^{2−p} for p = 0, 1, 2 and ∂D/∂t = (3 − r) t^{2−r}.
+  const V N[3] = {sp3[3], hn::Mul(sp3[3], tp3[1]), hn::Mul(sp3[3], tp3[2])};
+  const V threeS2 = hn::Mul(three, sp3[2]);
+  const V Ns[3] = {threeS2, hn::Mul(threeS2, tp3[1]), hn::Mul(threeS2, tp3[2])};
+  const V Nt[3] = {hn::Zero(d), sp3[3], hn::Add(N[1], N[1])}; // Nt[0] unread
+  const V Ds[3] = {threeS2, hn::Add(s, s), hn::Set(d, 1.0)};
+  const V minusDt0 = hn::Mul(hn::Set(d, -3.0), tp3[2]), Dt1 = hn::Add(t, t); // −∂D/∂t on row 0, ∂D/∂t on row 1
   int j = 0;
   for (int p = 0; p <= 2; ++p)
     for (int r = 0; r <= 2; ++r) {
       if (!p && !r) continue;
-      const V x = sp3[3 - p], y = tp3[3 - r], i1 = inv[j], i2 = hn::Mul(i1, i1);
-      rho[j] = hn::Mul(s3t[r], i1);
-      rhoS[j] = hn::Mul(hn::Mul(s2t[r], hn::MulAdd(hn::Set(d, p), x, hn::Mul(hn::Set(d, 3.0), y))), i2);
-      rhoT[j] = r ? hn::Mul(hn::Mul(s3t[r - 1], hn::MulAdd(hn::Set(d, r), x, hn::Mul(hn::Set(d, 2 * r - 3), y))), i2)
-                  : hn::Mul(hn::Mul(hn::Set(d, -3.0), hn::Mul(sp3[3], tp3[2])), i2);
+      const V u = inv[j], w = hn::Mul(N[r], u);
+      rho[j] = w;
+      rhoS[j] = hn::Mul(p == 2 ? hn::Sub(Ns[r], w) : hn::NegMulAdd(w, Ds[p], Ns[r]), u);
+      rhoT[j] = r == 0   ? hn::Mul(hn::Mul(w, minusDt0), u)
+                : r == 1 ? hn::Mul(hn::NegMulAdd(w, Dt1, Nt[1]), u)
+                         : hn::Mul(hn::Sub(Nt[2], w), u);
       ++j;
     }
 }
@@ -373,6 +397,11 @@ HWY_INLINE void gregoryJetBody(D d, std::size_t k, const GregoryJetArgs &a) {
 }
 
 void GregoryCornerWeightJets(std::size_t count, const CornerWeightJetArgs &a, bool reference) {
+  // The output's base and stride in locals: read through `a` after each
+  // store (which GCC did not prove leaves them alone), they cost three
+  // loads a store.
+  double *const weights = a.weights;
+  const std::size_t stride = a.stride;
   forEachVectorOrReference(reference, count, [&](auto d, std::size_t k) {
     using V = hn::Vec<decltype(d)>;
     // s and t as cornerParameters takes them, so that the weights are the same numbers.
@@ -380,9 +409,9 @@ void GregoryCornerWeightJets(std::size_t count, const CornerWeightJetArgs &a, bo
     V rho[8], rhoS[8], rhoT[8];
     g2RationalWeightJets(d, s, t, rho, rhoS, rhoT);
     for (int j = 0; j < 8; ++j) {
-      hn::StoreU(rho[j], d, a.weights + j * a.stride + k);
-      hn::StoreU(rhoS[j], d, a.weights + (8 + j) * a.stride + k);
-      hn::StoreU(rhoT[j], d, a.weights + (16 + j) * a.stride + k);
+      hn::StoreU(rho[j], d, weights + j * stride + k);
+      hn::StoreU(rhoS[j], d, weights + (8 + j) * stride + k);
+      hn::StoreU(rhoT[j], d, weights + (16 + j) * stride + k);
     }
   });
 }
