@@ -70,6 +70,25 @@ Command addTessellateCommand(CLI::App &app) {
             const Mesh mesh = o->tolerance > 0 || o->json ? tessellate(surface, tessellation, report)
                                                           : tessellateShowingProgress(surface, tessellation, "tessellate",
                                                                                       progressWanted(o->quiet));
+            // What stopped a tolerance short, on the error stream whatever
+            // the output format (the mesh is written: it is the best reached).
+            if (!report.angleUnreachableFaces.empty()) {
+              std::string list;
+              for (int f : report.angleUnreachableFaces) list += (list.empty() ? "" : ", ") + std::to_string(f);
+              std::fprintf(stderr,
+                           "curvenet: warning: the normal angle does not fall with the resolution on face%s %s "
+                           "(normals turning over near a point: a fold, or a corner whose curves leave it in "
+                           "nearly the same direction); refined for the tolerance alone there\n",
+                           report.angleUnreachableFaces.size() > 1 ? "s" : "", list.c_str());
+            }
+            if (report.memoryLimited)
+              std::fprintf(stderr, "curvenet: warning: refinement stopped at the memory available; measured "
+                                   "deviation %.3g (tolerance %g)\n",
+                           report.deviation, o->tolerance);
+            else if (!report.met)
+              std::fprintf(stderr, "curvenet: warning: the tolerance was not met within %d passes; measured "
+                                   "deviation %.3g (tolerance %g)\n",
+                           report.passes, report.deviation, o->tolerance);
             if (!o->output.empty()) writeMeshArgument(mesh, o->output, o->format);
             if (!o->controlNets.empty()) writeControlNets(surface, o->controlNets);
             if (o->json) {
@@ -84,7 +103,12 @@ Command addTessellateCommand(CLI::App &app) {
                                     {"passes", report.passes},
                                     {"uniform_resolution", report.uniformResolution},
                                     {"uniform_triangles", report.uniformTriangles}};
-              if (o->tolerance > 0) out["tolerance"] = o->tolerance;
+              if (o->tolerance > 0) {
+                out["tolerance"] = o->tolerance;
+                out["met"] = report.met;
+                out["angle_unreachable_faces"] = report.angleUnreachableFaces;
+                out["memory_limited"] = report.memoryLimited;
+              }
               if (o->angle > 0) out["angle_deg"] = o->angle;
               if (!o->output.empty()) out["output"] = o->output;
               std::fprintf(o->output == "-" ? stderr : stdout, "%s\n", out.dump(2).c_str());

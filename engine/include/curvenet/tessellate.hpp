@@ -18,6 +18,8 @@
 #include <span>
 #include <string>
 
+#include <vector>
+
 #include "curvenet/mesh.hpp"
 #include "curvenet/progress.hpp"
 #include "curvenet/surface.hpp"
@@ -56,12 +58,14 @@ struct TessellationOptions {
   /// resolution 8; each pass measures every triangle of the mesh (the exact
   /// surface at the domain midpoints of its edges and at its centroid
   /// against the mesh) and re-resolves the faces that miss, the deviation
-  /// taken to fall as 1/r² (at most 8 passes; TessellationReport says what
-  /// was reached). In (0, 1); `resolution` is then ignored.
+  /// taken to fall as 1/r² (at most 8 passes, each at most 4 times finer,
+  /// within the memory available; TessellationReport says what was
+  /// reached and what stopped it). In (0, 1); `resolution` is then ignored.
   double tolerance = 0;
-  /// With `tolerance`: also keep the angle between the normals at the two
-  /// ends of every mesh edge within this many degrees, [0, 90); 0 = no
-  /// angle limit.
+  /// With `tolerance`: also keep the angle between the face's normals at
+  /// the two ends of every mesh edge within this many degrees, [0, 90); 0 =
+  /// no angle limit. (The face's own normals: a vertex shared with a face
+  /// across a crease carries one of the two.)
   double angle = 0;
 };
 
@@ -78,9 +82,23 @@ struct TessellationReport {
   int passes = 0;       ///< tessellations made to choose the resolutions
   /// The smallest uniform resolution whose mesh, measured the same way,
   /// meets the same tolerance and angle, and its triangle count (with a
-  /// fixed resolution: that resolution and this mesh's count).
+  /// fixed resolution: that resolution and this mesh's count); 0 and 0 when
+  /// none with at most 32 times this mesh's vertices or 2²³ vertices,
+  /// whichever is more (and within the memory available), does.
   int uniformResolution = 0;
   std::size_t uniformTriangles = 0;
+  /// With a tolerance: whether every face met it, and the angle where asked
+  /// of the face (not of angleUnreachableFaces).
+  bool met = true;
+  /// Faces whose largest angle between neighbouring normals did not fall as
+  /// their resolution grew — normals that turn over within a sample spacing
+  /// of a point whatever the spacing (a fold there, or a corner whose two
+  /// curves leave it in nearly the same direction): refined for the
+  /// tolerance alone.
+  std::vector<int> angleUnreachableFaces;
+  /// The memory available (80 % of it, memoryShortfall) stopped the
+  /// refinement: the last pass was scaled back to fit.
+  bool memoryLimited = false;
 };
 
 /// The process-wide cache of evaluation plans: how many are built and the

@@ -679,39 +679,59 @@ void tessellateInto(const Surface &surface, const TessellationOptions &options, 
 /// Per face: the largest chordal deviation of its triangles — the exact
 /// surface at the domain midpoints of their edges and at their centroids
 /// against the mesh's linear interpolation there — and the largest angle
-/// (radians) between the normals at the two ends of their edges.
+/// (radians) between the face's normals at the two ends of their edges.
 struct FaceAccuracy {
   std::vector<double> deviation, angle;
 };
 
-FaceAccuracy measureAccuracy(const Surface &surface, const Mesh &mesh, const std::vector<std::array<Vec2, 3>> &domains) {
+/// The normals measured are the face's own: a vertex on a segment or at a
+/// network vertex is shared by the faces around it and carries one face's
+/// normal (the mesh is watertight), which across a crease is not the
+/// other's — measured from the mesh, the angle there is the crease's, and
+/// no resolution brings it down (a real sketch's creases asked resolution
+/// 4096 of their faces and ran out of memory). Vertex ids below
+/// `firstInterior` are those shared ones (Layout: network vertices and
+/// segment samples first).
+FaceAccuracy measureAccuracy(const Surface &surface, const Mesh &mesh, const std::vector<std::array<Vec2, 3>> &domains,
+                             std::uint32_t firstInterior) {
   const int faces = surface.faceCount();
   FaceAccuracy accuracy{std::vector<double>(faces, 0.0), std::vector<double>(faces, 0.0)};
   parallel::parallelFor(0, faces, [&](int f) {
     const std::uint32_t first = mesh.faceTriangleStart[f], last = mesh.faceTriangleStart[f + 1];
     // Per triangle: the midpoints of edges (0, 1), (1, 2), (2, 0), then the centroid.
-    std::vector<Vec2> at;
+    std::vector<Vec2> at, shared;
     at.reserve(4 * static_cast<std::size_t>(last - first));
     for (std::uint32_t t = first; t < last; ++t) {
       const auto &d = domains[t];
       at.push_back((d[0] + d[1]) * 0.5), at.push_back((d[1] + d[2]) * 0.5), at.push_back((d[2] + d[0]) * 0.5);
       at.push_back((d[0] + d[1] + d[2]) * (1.0 / 3));
+      for (int k = 0; k < 3; ++k)
+        if (mesh.triangles[t][k] < firstInterior) shared.push_back(d[k]);
     }
     std::vector<Vec3> exact(at.size());
     surface.evaluatePositions(f, at, exact);
+    std::vector<SurfacePoint> own(shared.size());
+    surface.evaluate(f, shared, own);
     double deviation = 0, angle = 0;
+    std::size_t next = 0; // the next of `own`, in the order `shared` was filled
     for (std::uint32_t t = first; t < last; ++t) {
       const auto &tri = mesh.triangles[t];
       const Vec3 *e = &exact[4 * static_cast<std::size_t>(t - first)];
       const Vec3 &a = mesh.positions[tri[0]], &b = mesh.positions[tri[1]], &c = mesh.positions[tri[2]];
       deviation = std::max({deviation, norm(e[0] - (a + b) * 0.5), norm(e[1] - (b + c) * 0.5),
                             norm(e[2] - (c + a) * 0.5), norm(e[3] - (a + b + c) * (1.0 / 3))});
-      for (int k = 0; k < 3; ++k)
-        angle = std::max(angle, angleBetween(mesh.normals[tri[k]], mesh.normals[tri[(k + 1) % 3]]));
+      Vec3 normal[3];
+      for (int k = 0; k < 3; ++k) normal[k] = tri[k] < firstInterior ? own[next++].normal : mesh.normals[tri[k]];
+      for (int k = 0; k < 3; ++k) angle = std::max(angle, angleBetween(normal[k], normal[(k + 1) % 3]));
     }
     accuracy.deviation[f] = deviation, accuracy.angle[f] = angle;
   });
   return accuracy;
+}
+
+/// Where a layout's face interiors begin: the ids below are shared by faces.
+std::uint32_t firstInteriorVertex(const Layout &layout) {
+  return layout.faceBase.empty() ? layout.vertexCount : layout.faceBase.front();
 }
 
 /// Triangles of the uniform tessellation at `resolution`, counted from its
@@ -737,50 +757,114 @@ std::vector<int> segmentIntervalsFor(const Surface &surface, const std::vector<i
   return intervals;
 }
 
-void checkLayoutSize(const Layout &layout) {
-  if (layout.vertexCount >= std::numeric_limits<std::uint32_t>::max() / 2)
-    throw InputError("", "tolerance", "needs more vertices than a mesh's 32-bit indices can number");
+/// Bytes a pass of the tolerance loop holds per mesh vertex at its peak:
+/// positions and normals (48), about two triangles (24) with their domain
+/// points (96), the evaluation plans of the faces' resolutions (~90 a
+/// sample, cached), and while trimming a candidate mesh beside the kept
+/// one (168) — with room for the caller's output.
+constexpr double kToleranceBytesPerVertex = 500;
+
+/// Whether a layout's mesh fits the 32-bit vertex ids and the memory
+/// available now (memoryShortfall).
+bool layoutFits(const Layout &layout) {
+  return layout.vertexCount < std::numeric_limits<std::uint32_t>::max() / 2 &&
+         memoryShortfall(kToleranceBytesPerVertex * layout.vertexCount).empty();
+}
+
+Layout toleranceLayout(const Surface &surface, const std::vector<int> &resolution) {
+  return makeLayout(surface, resolution, segmentIntervalsFor(surface, resolution));
 }
 
 /// The tessellation to options.tolerance (see TessellationOptions): every
 /// face starts at a probe resolution; each pass measures every face
 /// (measureAccuracy) and resolves the faces that miss the tolerance or the
 /// angle, with the chordal deviation taken to fall as 1/r² and the angle as
-/// 1/r (the first pass may also coarsen faces that need less).
+/// 1/r (the first pass may also coarsen faces that need less), by at most
+/// kMaxGrowth a pass. Two things stop a face's refinement short of the
+/// limits, and the report names them: an angle that does not fall when the
+/// face's resolution grows (normals that turn over within a sample spacing
+/// of a corner whatever the spacing: a fold there, or a corner whose
+/// curves leave it in nearly the same direction), and the memory available
+/// (the pass is scaled back to what fits and is the last).
 Mesh tessellateToTolerance(const Surface &surface, const TessellationOptions &options, TessellationReport *report) {
   if (!(options.tolerance > 0 && options.tolerance < 1))
     throw InputError("", "tolerance", "must lie in (0, 1) (relative to the diagonal)");
   if (!(options.angle >= 0 && options.angle < 90)) throw InputError("", "angle", "must lie in [0, 90) degrees");
   const double target = options.tolerance * surface.network().diagonal();
   const double angleLimit = options.angle * std::numbers::pi / 180;
-  constexpr int kProbe = 8, kMaxResolution = 4096, kMaxPasses = 8;
+  constexpr int kProbe = 8, kMaxResolution = 4096, kMaxPasses = 8, kMaxGrowth = 4;
   constexpr double kMargin = 0.92; // aim a little below the limits, so that most faces meet them at the first estimate
   const int faces = surface.faceCount();
   std::vector<int> resolution(static_cast<std::size_t>(faces), kProbe);
+  // Faces whose angle stopped falling as their resolution grew: judged by
+  // the deviation alone from then on.
+  std::vector<char> angleUnreachable(static_cast<std::size_t>(faces), 0);
+  auto missed = [&](const FaceAccuracy &a, int f) {
+    return a.deviation[f] > target || (angleLimit > 0 && !angleUnreachable[f] && a.angle[f] > angleLimit);
+  };
   TessellationOptions pass = options;
   pass.progress = nullptr; // several passes: no single fraction to report
   Mesh mesh;
   std::vector<std::array<Vec2, 3>> domains;
   FaceAccuracy accuracy;
   int passes = 0;
-  for (;;) {
-    const Layout layout = makeLayout(surface, resolution, segmentIntervalsFor(surface, resolution));
-    checkLayoutSize(layout);
-    tessellateInto(surface, pass, layout, nullptr, mesh, &domains);
-    accuracy = measureAccuracy(surface, mesh, domains);
-    ++passes;
-    bool changed = false;
-    for (int f = 0; f < faces; ++f) {
-      const bool missed = accuracy.deviation[f] > target || (angleLimit > 0 && accuracy.angle[f] > angleLimit);
-      if (passes > 1 && !missed) continue;
-      double factor = std::sqrt(accuracy.deviation[f] / (kMargin * target));
-      if (angleLimit > 0) factor = std::max(factor, accuracy.angle[f] / (kMargin * angleLimit));
-      int wanted = static_cast<int>(std::ceil(resolution[f] * factor));
-      if (missed) wanted = std::max(wanted, resolution[f] + 1);
-      wanted = std::clamp(wanted, 1, kMaxResolution);
-      if (wanted != resolution[f]) resolution[f] = wanted, changed = true;
+  bool memoryLimited = false;
+  {
+    const Layout probe = toleranceLayout(surface, resolution);
+    if (!layoutFits(probe)) {
+      const std::string shortfall = memoryShortfall(kToleranceBytesPerVertex * probe.vertexCount);
+      throw InputError("", "tolerance",
+                       "even the first pass (resolution " + std::to_string(kProbe) + " everywhere) " +
+                           (shortfall.empty() ? "needs more vertices than a mesh's 32-bit indices can number" : shortfall));
     }
-    if (!changed || passes == kMaxPasses) break;
+  }
+  std::vector<int> previousResolution = resolution;
+  std::vector<double> previousAngle(static_cast<std::size_t>(faces), 0.0);
+  for (;;) {
+    const Layout layout = toleranceLayout(surface, resolution);
+    tessellateInto(surface, pass, layout, nullptr, mesh, &domains);
+    accuracy = measureAccuracy(surface, mesh, domains, firstInteriorVertex(layout));
+    ++passes;
+    // A face refined by a quarter or more whose angle fell by less than a
+    // tenth (the law asks a fifth) will not reach the limit by refinement.
+    if (angleLimit > 0 && passes > 1)
+      for (int f = 0; f < faces; ++f)
+        if (accuracy.angle[f] > angleLimit && resolution[f] >= 1.25 * previousResolution[f] &&
+            accuracy.angle[f] > 0.9 * previousAngle[f])
+          angleUnreachable[f] = 1;
+    if (memoryLimited) break;
+    std::vector<int> next = resolution;
+    for (int f = 0; f < faces; ++f) {
+      const bool miss = missed(accuracy, f);
+      if (passes > 1 && !miss) continue;
+      double factor = std::sqrt(accuracy.deviation[f] / (kMargin * target));
+      if (angleLimit > 0 && !angleUnreachable[f]) factor = std::max(factor, accuracy.angle[f] / (kMargin * angleLimit));
+      int wanted = static_cast<int>(std::ceil(resolution[f] * std::min(factor, double(kMaxGrowth))));
+      if (miss) wanted = std::max(wanted, resolution[f] + 1);
+      next[f] = std::clamp(wanted, 1, kMaxResolution);
+    }
+    if (next == resolution || passes == kMaxPasses) break;
+    if (!layoutFits(toleranceLayout(surface, next))) {
+      // The largest share of every face's growth that fits (coarsened faces
+      // keep their coarsening); nothing fits: the mesh in hand.
+      memoryLimited = true;
+      auto scaled = [&](double share) {
+        std::vector<int> r = resolution;
+        for (int f = 0; f < faces; ++f)
+          r[f] = next[f] <= resolution[f] ? next[f]
+                                          : resolution[f] + static_cast<int>(share * (next[f] - resolution[f]));
+        return r;
+      };
+      double low = 0, high = 1;
+      for (int step = 0; step < 20; ++step) {
+        const double middle = 0.5 * (low + high);
+        (layoutFits(toleranceLayout(surface, scaled(middle))) ? low : high) = middle;
+      }
+      next = scaled(low);
+      if (next == resolution) break;
+    }
+    previousResolution = resolution, previousAngle = accuracy.angle;
+    resolution = std::move(next);
   }
   // Trimming: a face that meets the limits with room to spare tries one
   // resolution less where the same laws predict it still meets them; the
@@ -789,9 +873,9 @@ Mesh tessellateToTolerance(const Surface &surface, const TessellationOptions &op
   auto predictedToMeet = [&](int f, int coarser) {
     const double ratio = static_cast<double>(resolution[f]) / coarser;
     return accuracy.deviation[f] * ratio * ratio <= target &&
-           (angleLimit == 0 || accuracy.angle[f] * ratio <= angleLimit);
+           (angleLimit == 0 || angleUnreachable[f] || accuracy.angle[f] * ratio <= angleLimit);
   };
-  for (int trim = 0; trim < 2 && passes < kMaxPasses + 2; ++trim) {
+  for (int trim = 0; trim < 2 && passes < kMaxPasses + 2 && !memoryLimited; ++trim) {
     const bool met = std::all_of(accuracy.deviation.begin(), accuracy.deviation.end(),
                                  [&](double d) { return d <= target; });
     if (!met) break;
@@ -801,23 +885,22 @@ Mesh tessellateToTolerance(const Surface &surface, const TessellationOptions &op
     if (trimmed == resolution) break;
     Mesh candidate;
     std::vector<std::array<Vec2, 3>> candidateDomains;
-    const Layout layout = makeLayout(surface, trimmed, segmentIntervalsFor(surface, trimmed));
+    const Layout layout = toleranceLayout(surface, trimmed);
     tessellateInto(surface, pass, layout, nullptr, candidate, &candidateDomains);
-    FaceAccuracy candidateAccuracy = measureAccuracy(surface, candidate, candidateDomains);
+    FaceAccuracy candidateAccuracy = measureAccuracy(surface, candidate, candidateDomains, firstInteriorVertex(layout));
     ++passes;
     bool reverted = false;
     for (int f = 0; f < faces; ++f)
-      if (candidateAccuracy.deviation[f] > target || (angleLimit > 0 && candidateAccuracy.angle[f] > angleLimit))
-        trimmed[f] = resolution[f], reverted = true;
+      if (missed(candidateAccuracy, f)) trimmed[f] = resolution[f], reverted = true;
     resolution = trimmed;
     if (!reverted) {
       mesh = std::move(candidate), domains = std::move(candidateDomains), accuracy = std::move(candidateAccuracy);
       continue;
     }
     // The accepted resolutions, tessellated and measured once more.
-    const Layout accepted = makeLayout(surface, resolution, segmentIntervalsFor(surface, resolution));
+    const Layout accepted = toleranceLayout(surface, resolution);
     tessellateInto(surface, pass, accepted, nullptr, mesh, &domains);
-    accuracy = measureAccuracy(surface, mesh, domains);
+    accuracy = measureAccuracy(surface, mesh, domains, firstInteriorVertex(accepted));
     ++passes;
   }
   if (report) {
@@ -830,29 +913,66 @@ Mesh tessellateToTolerance(const Surface &surface, const TessellationOptions &op
     r.minResolution = *std::min_element(resolution.begin(), resolution.end());
     r.maxResolution = *std::max_element(resolution.begin(), resolution.end());
     r.passes = passes;
+    r.memoryLimited = memoryLimited;
+    for (int f = 0; f < faces; ++f)
+      if (angleUnreachable[f]) r.angleUnreachableFaces.push_back(f);
+    r.met = true;
+    for (int f = 0; f < faces; ++f) r.met = r.met && !missed(accuracy, f);
     // The uniform comparison: the smallest uniform resolution whose mesh,
-    // measured the same way, meets the same limits (bisection between one
-    // and the largest face resolution, which is checked first).
-    auto meets = [&](int uniform) {
+    // measured the same way, meets the same limits — bisection between one
+    // and the largest face resolution, grown by quarters until it meets
+    // them. The angle is not asked of the faces above, nor of those whose
+    // angle does not fall as the uniform resolution grows (the same rule: a
+    // fold near a corner that only a finer sampling than this mesh's
+    // reaches). None (0) when no uniform mesh of at most 32 times this
+    // mesh's vertices or 2²³ vertices, whichever is more (and within the
+    // memory), meets them: unbounded, such a fold sent the search to the
+    // memory's limit.
+    const double reach = std::max(32 * static_cast<double>(mesh.positions.size()), 0x1p23);
+    std::vector<char> exempt = angleUnreachable;
+    auto missedUniform = [&](const FaceAccuracy &a, int f) {
+      return a.deviation[f] > target || (angleLimit > 0 && !exempt[f] && a.angle[f] > angleLimit);
+    };
+    enum class Uniform { Meets, Misses, TooLarge };
+    auto measureUniform = [&](int uniform, FaceAccuracy *measured) {
+      const Layout layout = makeLayout(surface, uniform);
+      if (layout.vertexCount > reach || !layoutFits(layout)) return Uniform::TooLarge;
       Mesh m;
       std::vector<std::array<Vec2, 3>> d;
-      const Layout layout = makeLayout(surface, uniform);
-      checkLayoutSize(layout);
       tessellateInto(surface, pass, layout, nullptr, m, &d);
-      const FaceAccuracy a = measureAccuracy(surface, m, d);
-      for (int f = 0; f < faces; ++f)
-        if (a.deviation[f] > target || (angleLimit > 0 && a.angle[f] > angleLimit)) return false;
-      return true;
+      FaceAccuracy a = measureAccuracy(surface, m, d, firstInteriorVertex(layout));
+      bool meets = true;
+      for (int f = 0; f < faces; ++f) meets = meets && !missedUniform(a, f);
+      if (measured) *measured = std::move(a);
+      return meets ? Uniform::Meets : Uniform::Misses;
     };
     int high = r.maxResolution;
-    while (!meets(high) && high < kMaxResolution) high = std::min(kMaxResolution, high + std::max(1, high / 4));
-    int low = 0; // does not meet (resolution 0 makes no mesh)
-    while (high - low > 1) {
-      const int middle = (low + high) / 2;
-      (middle >= 1 && meets(middle) ? high : low) = middle;
+    FaceAccuracy last;
+    Uniform at = measureUniform(high, &last);
+    while (at == Uniform::Misses && high < kMaxResolution) {
+      const int grown = std::min(kMaxResolution, high + std::max(1, high / 4));
+      FaceAccuracy now;
+      at = measureUniform(grown, &now);
+      if (at == Uniform::TooLarge) break;
+      if (angleLimit > 0 && grown >= 1.25 * high)
+        for (int f = 0; f < faces; ++f)
+          if (now.deviation[f] <= target && now.angle[f] > angleLimit && now.angle[f] > 0.9 * last.angle[f]) exempt[f] = 1;
+      if (at == Uniform::Misses) {
+        bool meets = true; // with the faces just exempted
+        for (int f = 0; f < faces; ++f) meets = meets && !missedUniform(now, f);
+        if (meets) at = Uniform::Meets;
+      }
+      high = grown, last = std::move(now);
     }
-    r.uniformResolution = high;
-    r.uniformTriangles = uniformTriangles(surface, high);
+    if (at == Uniform::Meets) {
+      int low = 0; // does not meet (resolution 0 makes no mesh)
+      while (high - low > 1) {
+        const int middle = (low + high) / 2;
+        (middle >= 1 && measureUniform(middle, nullptr) == Uniform::Meets ? high : low) = middle;
+      }
+      r.uniformResolution = high;
+      r.uniformTriangles = uniformTriangles(surface, high);
+    }
   }
   return mesh;
 }
@@ -881,8 +1001,9 @@ Mesh tessellate(const Surface &surface, const TessellationOptions &options, Tess
   checkResolution(surface, options.resolution);
   Mesh mesh;
   std::vector<std::array<Vec2, 3>> domains;
-  tessellateInto(surface, options, makeLayout(surface, options.resolution), nullptr, mesh, &domains);
-  const FaceAccuracy accuracy = measureAccuracy(surface, mesh, domains);
+  const Layout layout = makeLayout(surface, options.resolution);
+  tessellateInto(surface, options, layout, nullptr, mesh, &domains);
+  const FaceAccuracy accuracy = measureAccuracy(surface, mesh, domains, firstInteriorVertex(layout));
   report = {};
   report.diagonal = surface.network().diagonal();
   report.deviation = *std::max_element(accuracy.deviation.begin(), accuracy.deviation.end()) / report.diagonal;
