@@ -150,6 +150,7 @@ NetworkDescription skewXNodes(NetworkDescription d, double degrees, int &skewed)
 
 struct Figures {
   int folds = 0;
+  int cornerFolds = 0; ///< ShapeReport::cornerFolds: normals turning over near a corner, below the fold grid
   double diagonalRatio = 0;
   double maxJump = 0;     ///< gregory-g2: across edges whose two vertices are G²-admissible
   double maxAngleDeg = 0; ///< normal angle across shared segments
@@ -170,7 +171,9 @@ Figures measure(const Network &network, Scheme scheme, CurveHandling curves) {
   for (const Vec3 &p : mesh.positions) box.add(p);
   f.diagonalRatio = box.diagonal() / network.diagonal();
   f.maxAngleDeg = measureContinuity(surface, {8}).maxNormalAngleDeg;
-  f.excursion = measureShape(surface, {2}).maxExcursion;
+  const ShapeReport shape = measureShape(surface, {2});
+  f.excursion = shape.maxExcursion;
+  f.cornerFolds = int(shape.cornerFolds.size());
   if (scheme == Scheme::GregoryG2) {
     const Network &built = surface.network();
     const NetworkAnalysis analysis = analyzeNetwork(built);
@@ -193,6 +196,7 @@ struct Expectation {
   double maxDiagonalRatio;
   double maxJump; ///< gregory-g2 only
   double maxAngleDeg;
+  int maxCornerFolds = 0;
 };
 
 const char *const kBase = "sphere-dodecahedron";
@@ -245,13 +249,14 @@ std::vector<Case> corpus() {
 bool printTable() { return std::getenv("CURVENET_CORPUS_TABLE") != nullptr; }
 
 void printRow(const std::string &name, Scheme scheme, const char *curves, const Figures &f) {
-  std::printf("| %-18s | %-16s | %-8s | %5d | %8.4f | %9.3g | %9.3g | %9.3g | %5zu |\n", name.c_str(),
-              schemeName(scheme).c_str(), curves, f.folds, f.diagonalRatio, f.maxJump, f.maxAngleDeg, f.excursion,
-              f.repairMoves);
+  std::printf("| %-18s | %-16s | %-8s | %5d | %5d | %8.4f | %9.3g | %9.3g | %9.3g | %5zu |\n", name.c_str(),
+              schemeName(scheme).c_str(), curves, f.folds, f.cornerFolds, f.diagonalRatio, f.maxJump, f.maxAngleDeg,
+              f.excursion, f.repairMoves);
 }
 
 void checkAgainst(const Figures &f, const Expectation &e) {
   EXPECT_LE(f.folds, e.maxFolds);
+  EXPECT_LE(f.cornerFolds, e.maxCornerFolds);
   EXPECT_LE(f.diagonalRatio, e.maxDiagonalRatio);
   EXPECT_LE(f.maxJump, e.maxJump);
   EXPECT_LE(f.maxAngleDeg, e.maxAngleDeg);
@@ -274,8 +279,8 @@ void runCase(const std::string &name, const Network &network, const Expectation 
 
 TEST(RobustnessCorpus, PerturbedBuiltins) {
   if (printTable())
-    std::printf("| case | scheme | curves | folds | diag ratio | max jump (G2-adm.) | max normal angle ° | excursion | "
-                "moves |\n");
+    std::printf("| case | scheme | curves | folds | corner folds | diag ratio | max jump (G2-adm.) | max normal angle ° | "
+                "excursion | moves |\n");
   for (const Case &c : corpus()) {
     const Network network = Network::build(c.make(), c.name);
     const Expectation expect[] = {c.g1, c.cr, c.g2};
@@ -347,15 +352,19 @@ TEST(RobustnessCorpus, SharedSketches) {
   // quad and a 7-gon (its mirror image into two hexagons). G¹ segments
   // ending at a crease are exactly G¹ (≤ 1.1e-8°; 6.5–7.7° before vertex
   // repair turned each fan's G¹ curves into the plane of its crease curves).
+  // Not yet met: gregory-g2 folds near a few corners, closer to them than
+  // the fold grid samples (ShapeReport::cornerFolds; turned-over normals
+  // within 3e-4–2e-3 of the diagonal): doghead 2 corners, dress 4, bathtub 4.
+  auto cornerFolds = [](int count) { return Expectation{0, 1.05, 1e-4, 1e-6, count}; };
   const std::map<std::string, std::array<Expectation, 3>> rows = {
-      {"doghead.obj", {{kGoal, kGoal, kGoal}}},
+      {"doghead.obj", {{kGoal, kGoal, cornerFolds(2)}}},
       {"spherecylinder.obj", {{kGoal, kGoal, kGoal}}},
       {"sewing_machine.obj", {{kGoal, kGoal, kGoal}}},
       {"box.obj", {{kGoal, kGoal, kGoal}}},
-      {"dress.obj", {{kGoal, kGoal, kGoal}}},
+      {"dress.obj", {{kGoal, kGoal, cornerFolds(4)}}},
       {"ellipsetorus.obj", {{kGoal, kGoal, kGoal}}},
       {"iron.obj", {{kGoal, kGoal, kGoal}}},
-      {"bathtub.obj", {{kGoal, kGoal, kGoal}}},
+      {"bathtub.obj", {{kGoal, kGoal, cornerFolds(4)}}},
   };
 
   int files = 0;
@@ -367,6 +376,50 @@ TEST(RobustnessCorpus, SharedSketches) {
     runCase(name, network, expect.data());
   }
   EXPECT_GT(files, 0);
+}
+
+// Corner folds (ShapeReport::cornerFolds) are real and where reported: on
+// doghead.obj's gregory-g2 surface, a square grid along each reported
+// corner's two sides — not the report's polar grid — finds neighbouring
+// normals in opposite half-spaces, and the turned-over samples lie within
+// twice the reported extent of the corner; no corner of a built-in folds.
+TEST(RobustnessCorpus, CornerFoldsAreFoundWhereTheNormalTurnsOver) {
+  for (const char *name : {"sphere-dodecahedron", "ellipsoid-truncated-icosahedron", "torus-mixed"})
+    EXPECT_TRUE(measureShape(Surface::build(Network::build(builtinNetwork(name)), {Scheme::GregoryG2})).cornerFolds.empty())
+        << name;
+  const std::string path = std::string(CURVENET_SHARED_DATA_DIR) + "/sketches/doghead.obj";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent: no sketch with corner folds";
+  const Network network = Network::build(networkFromCurveGraph(readCurveGraphFile(path), {}, path).description, path);
+  const Surface surface = Surface::build(network, {Scheme::GregoryG2});
+  const ShapeReport shape = measureShape(surface);
+  ASSERT_FALSE(shape.cornerFolds.empty());
+  for (const CornerFold &fold : shape.cornerFolds) {
+    SCOPED_TRACE("face " + std::to_string(fold.face) + " corner " + std::to_string(fold.corner));
+    const int n = surface.domainSides(fold.face);
+    const Vec2 c = surface.domainCorner(fold.face, fold.corner);
+    const Vec2 along = surface.domainCorner(fold.face, (fold.corner + 1) % n) - c;
+    const Vec2 back = surface.domainCorner(fold.face, (fold.corner + n - 1) % n) - c;
+    constexpr int kSteps = 120;
+    std::vector<Vec2> uv;
+    for (int i = 1; i <= kSteps; ++i)
+      for (int j = 1; j <= kSteps; ++j) uv.push_back(c + along * (0.03 * i / kSteps) + back * (0.03 * j / kSteps));
+    std::vector<SurfacePoint> at(uv.size());
+    surface.evaluate(fold.face, uv, at);
+    const Vec3 corner = surface.evaluate(fold.face, c).point;
+    const Vec3 reference = at.back().normal; // the grid's far corner
+    bool opposite = false;
+    double reach = 0;
+    for (int i = 0; i < kSteps; ++i)
+      for (int j = 0; j < kSteps; ++j) {
+        const std::size_t k = static_cast<std::size_t>(i * kSteps + j);
+        if (j + 1 < kSteps && dot(at[k].normal, at[k + 1].normal) <= 0) opposite = true;
+        if (i + 1 < kSteps && dot(at[k].normal, at[k + kSteps].normal) <= 0) opposite = true;
+        if (dot(at[k].normal, reference) <= 0) reach = std::max(reach, norm(at[k].point - corner) / network.diagonal());
+      }
+    EXPECT_TRUE(opposite);
+    EXPECT_GT(reach, 0.0);
+    EXPECT_LE(reach, 2 * fold.extent);
+  }
 }
 
 // A model far from the origin is translated to its centre before anything

@@ -118,8 +118,12 @@ void addCreases(nlohmann::json &report, const Surface &surface) {
 nlohmann::json shapeReport(const ShapeReport &shape) {
   nlohmann::json faces = nlohmann::json::array();
   for (const FaceShape &f : shape.faces)
-    faces.push_back({{"face", f.face}, {"folded", f.folded}, {"excursion", f.excursion}, {"fairness", f.fairness}});
+    faces.push_back({{"face", f.face}, {"folded", f.folded}, {"folds_at_corner", f.foldsAtCorner},
+                     {"excursion", f.excursion}, {"fairness", f.fairness}});
+  nlohmann::json corners = nlohmann::json::array();
+  for (const CornerFold &c : shape.cornerFolds) corners.push_back({{"face", c.face}, {"corner", c.corner}, {"extent", c.extent}});
   return {{"folded_faces", shape.foldedFaces},
+          {"corner_folds", std::move(corners)},
           {"max_excursion", shape.maxExcursion},
           {"worst_excursion_face", shape.worstExcursionFace},
           {"excursion_bound", kExcursionBound},
@@ -132,7 +136,9 @@ nlohmann::json shapeReport(const ShapeReport &shape) {
           {"definitions", "excursion: growth of the bounding-box diagonal of the face's boundary curves when its "
                           "patch samples are added, relative to the model diagonal; fairness: area mean of "
                           "k1^2 + k2^2 over the face divided by the arc-length mean of k^2 along its boundary "
-                          "(2 for a sphere-cap face); rejected: folded or excursion above the bound"}};
+                          "(2 for a sphere-cap face); corner fold: the normal turning over within 0.2 of a "
+                          "corner's neighbourhood in the domain, extent relative to the model diagonal; "
+                          "rejected: folded (inside or at a corner) or excursion above the bound"}};
 }
 
 void addSurfaceReport(nlohmann::json &report, const Surface &surface, int samplesPerSegment, int resolution) {
@@ -375,9 +381,18 @@ void printReportTable(const nlohmann::json &report) {
   }
   if (report.contains("shape")) {
     const auto &sh = report["shape"];
-    std::printf("\nshape: %zu folded faces, max excursion %.3g of the diagonal (face %d, bound %.3g), fairness %.3g "
-                "(max %.3g, face %d)%s\n",
-                sh["folded_faces"].size(), sh["max_excursion"].get<double>(), sh["worst_excursion_face"].get<int>(),
+    std::string corners;
+    for (const auto &c : sh["corner_folds"]) {
+      char one[96];
+      std::snprintf(one, sizeof one, "%sface %d corner %d (%.2g)", corners.empty() ? "" : "; ", c["face"].get<int>(),
+                    c["corner"].get<int>(), c["extent"].get<double>());
+      corners += one;
+    }
+    std::printf("\nshape: %zu folded faces, %zu corner folds%s%s%s, max excursion %.3g of the diagonal (face %d, bound "
+                "%.3g), fairness %.3g (max %.3g, face %d)%s\n",
+                sh["folded_faces"].size(), sh["corner_folds"].size(), corners.empty() ? "" : " [",
+                corners.c_str(), corners.empty() ? "" : "; extent of the diagonal]",
+                sh["max_excursion"].get<double>(), sh["worst_excursion_face"].get<int>(),
                 sh["excursion_bound"].get<double>(), sh["fairness"].get<double>(), sh["max_fairness"].get<double>(),
                 sh["worst_fairness_face"].get<int>(), sh["acceptable"].get<bool>() ? "" : " — REJECTED faces listed in --json");
   }

@@ -69,18 +69,27 @@ void enforceShape(const Surface &surface, const ShapeReport &shape, bool strict)
   for (int f : shape.rejectedFaces) {
     const FaceShape &face = shape.faces[size_t(f)];
     rejected += (rejected.empty() ? "" : ", ") + std::to_string(f);
-    if (!strict && !face.folded)
+    if (!strict && !face.folded && !(face.excursion <= kExcursionBound))
       std::fprintf(stderr,
                    "curvenet: warning: face %d: the %s patch leaves its boundary's box by %.3g of the diagonal "
                    "(bound %.3g)\n",
                    f, schemeName(surface.faceOptions(f).scheme).c_str(), face.excursion, kExcursionBound);
   }
+  if (!strict)
+    for (const CornerFold &c : shape.cornerFolds)
+      std::fprintf(stderr,
+                   "curvenet: warning: face %d: the %s patch folds near its corner %d (its normal turns over within "
+                   "%.2g of the diagonal of the corner, closer than the fold check's grid; typically where the "
+                   "corner's two curves leave it in nearly the same direction): try another scheme or bend the "
+                   "curves apart\n",
+                   c.face, schemeName(surface.faceOptions(c.face).scheme).c_str(), c.corner, c.extent);
   if (strict && !rejected.empty())
     throw InputError("", "faces " + rejected,
                      "the surface folds or leaves its boundary's box by more than " +
                          std::to_string(kExcursionBound) + " of the diagonal (largest excursion " +
                          std::to_string(shape.maxExcursion) + ", " + std::to_string(shape.foldedFaces.size()) +
-                         " folded faces); --strict writes nothing");
+                         " folded faces, " + std::to_string(shape.cornerFolds.size()) +
+                         " corner folds); --strict writes nothing");
 }
 
 void noteRepair(const Surface &surface) {

@@ -7,6 +7,11 @@
 // the centre to a side split into resolution² parts, one point at the
 // centroid of each, weighted by its surface area):
 //  * folded — Surface::foldedFaces (the normal turns over inside the face);
+//  * corner folds — the normal turning over near a corner, closer to it than
+//    the fold grid samples (a corner whose two curves leave it in nearly the
+//    same direction, where |du × dv| vanishes: ~5e-4 of the diagonal on a
+//    few G² faces of the public sketches): each corner's neighbourhood on a
+//    polar grid, 2e-4 to 0.2 of the way to the neighbouring corners;
 //  * excursion — how far the patch leaves the box of its boundary: the
 //    growth of the bounding-box diagonal when the samples are added to the
 //    box of the face's boundary curves (sampled at 8·resolution points per
@@ -42,9 +47,19 @@ struct ShapeOptions {
   int resolution = 4; ///< fan subdivision per domain triangle, ≥ 1
 };
 
+/// A fold at corner `corner` of face `face`: neighbouring samples of its
+/// polar grid whose normals point into opposite half-spaces.
+struct CornerFold {
+  int face = -1, corner = -1;
+  /// How far from the corner's point the samples turned over against the
+  /// grid's outer middle reach, relative to the model's diagonal.
+  double extent = 0;
+};
+
 struct FaceShape {
   int face = -1;
   bool folded = false;
+  bool foldsAtCorner = false; ///< a CornerFold at one of its corners
   double excursion = 0; ///< relative to the model's diagonal, ≥ 0
   double fairness = 0;  ///< dimensionless (see above)
   double area = 0;      ///< surface area of the samples (model units²)
@@ -53,12 +68,14 @@ struct FaceShape {
 struct ShapeReport {
   std::vector<FaceShape> faces; ///< by face index
   std::vector<int> foldedFaces;
+  std::vector<CornerFold> cornerFolds; ///< by face, then corner
   double maxExcursion = 0;
   int worstExcursionFace = -1;
   /// Area-weighted mean of the faces' fairness, and the largest.
   double fairness = 0, maxFairness = 0;
   int worstFairnessFace = -1;
-  /// Faces that fold or whose excursion exceeds kExcursionBound, ascending.
+  /// Faces that fold (inside or at a corner) or whose excursion exceeds
+  /// kExcursionBound, ascending.
   std::vector<int> rejectedFaces;
   bool acceptable() const { return rejectedFaces.empty(); }
 };

@@ -417,11 +417,17 @@ Result<ShapeReport> Model::shape(const ShapeOptions &options) const {
       const ShapeReport part = measureShape(*owner, options);
       for (int g = 0; g < faceCount(); ++g)
         if (surface(g) == owner) merged.faces[static_cast<std::size_t>(g)] = part.faces[static_cast<std::size_t>(g)];
+      for (const CornerFold &fold : part.cornerFolds)
+        if (surface(fold.face) == owner) merged.cornerFolds.push_back(fold);
     }
+    std::sort(merged.cornerFolds.begin(), merged.cornerFolds.end(), [](const CornerFold &a, const CornerFold &b) {
+      return std::pair(a.face, a.corner) < std::pair(b.face, b.corner);
+    });
     double weighted = 0, area = 0;
     for (const FaceShape &face : merged.faces) {
       if (face.folded) merged.foldedFaces.push_back(face.face);
-      if (face.folded || !(face.excursion <= kExcursionBound)) merged.rejectedFaces.push_back(face.face);
+      if (face.folded || face.foldsAtCorner || !(face.excursion <= kExcursionBound))
+        merged.rejectedFaces.push_back(face.face);
       if (merged.worstExcursionFace < 0 || face.excursion > merged.maxExcursion)
         merged.maxExcursion = face.excursion, merged.worstExcursionFace = face.face;
       if (merged.worstFairnessFace < 0 || face.fairness > merged.maxFairness)

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <vector>
 
 #include "curvenet/error.hpp"
 
@@ -85,6 +87,45 @@ FaceShape measureFace(const Surface &surface, int f, int resolution) {
   return out;
 }
 
+/// Corner k's polar grid: points c + ρ ((1 − α) (c₋ − c) + α (c₊ − c))
+/// towards the two neighbouring corners c₋, c₊, ρ from 2e-4 to 0.2 in
+/// steps of about √3 and α across the corner's wedge; neighbours in ρ or
+/// α whose normals point into opposite half-spaces make a fold (the test
+/// of the fold grid, Surface::foldedFaces, at the corner's scale).
+std::vector<CornerFold> cornerFolds(const Surface &surface, int f) {
+  constexpr double kRadii[] = {2e-4, 3.5e-4, 6e-4, 1e-3, 2e-3, 3.5e-3, 6e-3, 1e-2, 2e-2, 3.5e-2, 6e-2, 0.1, 0.2};
+  constexpr int kRings = std::size(kRadii), kRays = 9;
+  const int n = surface.domainSides(f);
+  std::vector<CornerFold> folds;
+  std::vector<Vec2> uv(static_cast<std::size_t>(kRings * kRays) + 1);
+  std::vector<SurfacePoint> at(uv.size());
+  for (int k = 0; k < n; ++k) {
+    const Vec2 c = surface.domainCorner(f, k);
+    const Vec2 toNext = surface.domainCorner(f, (k + 1) % n) - c, toPrevious = surface.domainCorner(f, (k + n - 1) % n) - c;
+    for (int i = 0; i < kRings; ++i)
+      for (int j = 0; j < kRays; ++j) {
+        const double alpha = (j + 0.5) / kRays;
+        uv[i * kRays + j] = c + (toPrevious * (1 - alpha) + toNext * alpha) * kRadii[i];
+      }
+    uv.back() = c;
+    surface.evaluate(f, uv, at);
+    auto normal = [&](int i, int j) { return at[static_cast<std::size_t>(i * kRays + j)].normal; };
+    bool folded = false;
+    for (int i = 0; i < kRings && !folded; ++i)
+      for (int j = 0; j < kRays && !folded; ++j)
+        folded = (j + 1 < kRays && dot(normal(i, j), normal(i, j + 1)) <= 0) ||
+                 (i + 1 < kRings && dot(normal(i, j), normal(i + 1, j)) <= 0);
+    if (!folded) continue;
+    const Vec3 outer = normal(kRings - 1, kRays / 2), corner = at.back().point;
+    double extent = 0;
+    for (int i = 0; i < kRings; ++i)
+      for (int j = 0; j < kRays; ++j)
+        if (dot(normal(i, j), outer) <= 0) extent = std::max(extent, norm(at[i * kRays + j].point - corner));
+    folds.push_back({f, k, extent / surface.network().diagonal()});
+  }
+  return folds;
+}
+
 } // namespace
 
 ShapeReport measureShape(const Surface &surface, const ShapeOptions &options) {
@@ -95,13 +136,16 @@ ShapeReport measureShape(const Surface &surface, const ShapeOptions &options) {
   for (int f = 0; f < surface.faceCount(); ++f) {
     FaceShape face = measureFace(surface, f, options.resolution);
     face.folded = std::find(report.foldedFaces.begin(), report.foldedFaces.end(), f) != report.foldedFaces.end();
+    const std::vector<CornerFold> corners = cornerFolds(surface, f);
+    face.foldsAtCorner = !corners.empty();
+    report.cornerFolds.insert(report.cornerFolds.end(), corners.begin(), corners.end());
     if (face.excursion > report.maxExcursion || report.worstExcursionFace < 0)
       report.maxExcursion = face.excursion, report.worstExcursionFace = f;
     if (face.fairness > report.maxFairness || report.worstFairnessFace < 0)
       report.maxFairness = face.fairness, report.worstFairnessFace = f;
     weighted += face.fairness * face.area;
     totalArea += face.area;
-    if (face.folded || !(face.excursion <= kExcursionBound)) report.rejectedFaces.push_back(f);
+    if (face.folded || face.foldsAtCorner || !(face.excursion <= kExcursionBound)) report.rejectedFaces.push_back(f);
     report.faces.push_back(face);
   }
   report.fairness = totalArea > 0 ? weighted / totalArea : 0.0;
