@@ -45,17 +45,15 @@ template <int M, class D, class V> HWY_INLINE void reciprocals(D d, V (&x)[M]) {
 /// on each side of the division instead of 7, so that the corners of a
 /// sample overlap in the pipeline.
 /// With `numerator`: numerator / x for each (the same operations, the
-/// numerator taken into the one division). Returns whether a lane's product
-/// underflowed, so that each x took a division of its own, clamped at
-/// 1e-300 (at a corner itself, where x = 0).
-template <class D, class V> HWY_INLINE bool reciprocals(D d, V (&x)[8], V numerator) {
+/// numerator taken into the one division).
+template <class D, class V> HWY_INLINE void reciprocals(D d, V (&x)[8], V numerator) {
   const V pair[4] = {hn::Mul(x[0], x[1]), hn::Mul(x[2], x[3]), hn::Mul(x[4], x[5]), hn::Mul(x[6], x[7])};
   const V quad[2] = {hn::Mul(pair[0], pair[1]), hn::Mul(pair[2], pair[3])};
   const V all = hn::Mul(quad[0], quad[1]);
   if (HWY_UNLIKELY(!hn::AllFalse(d, hn::Not(hn::Gt(all, hn::Set(d, 1e-250)))))) {
     const V tiny = hn::Set(d, 1e-300);
     for (V &v : x) v = hn::Div(numerator, hn::Max(v, tiny));
-    return true;
+    return;
   }
   const V inverse = hn::Div(numerator, all);
   const V quadInverse[2] = {hn::Mul(inverse, quad[1]), hn::Mul(inverse, quad[0])};
@@ -67,17 +65,15 @@ template <class D, class V> HWY_INLINE bool reciprocals(D d, V (&x)[8], V numera
     x[2 * p] = hn::Mul(pairInverse[p], x[2 * p + 1]);
     x[2 * p + 1] = hn::Mul(pairInverse[p], first);
   }
-  return false;
 }
 
 /// Powers 1, s, s², s³ and 1, t, t², t³, and the reciprocals of the eight
 /// denominators s^{3−p} + t^{3−r} of the G² correction patch, (p, r) ≠ (0, 0)
 /// row by row.
 /// With OverS3, s³ / (s^{3−p} + t^{3−r}) instead of the reciprocals (s³
-/// the batch inversion's numerator, at no extra cost). Returns reciprocals'
-/// flag: a lane at (or within ~1e-50 of) the corner s = t = 0.
+/// the batch inversion's numerator, at no extra cost).
 template <bool OverS3 = false, class D, class V>
-HWY_INLINE bool g2CornerWeights(D d, V s, V t, V (&sp)[4], V (&tp)[4], V (&den)[8]) {
+HWY_INLINE void g2CornerWeights(D d, V s, V t, V (&sp)[4], V (&tp)[4], V (&den)[8]) {
   const V one = hn::Set(d, 1.0), s2 = hn::Mul(s, s), t2 = hn::Mul(t, t);
   sp[0] = one, sp[1] = s, sp[2] = s2, sp[3] = hn::Mul(s2, s);
   tp[0] = one, tp[1] = t, tp[2] = t2, tp[3] = hn::Mul(t2, t);
@@ -85,7 +81,7 @@ HWY_INLINE bool g2CornerWeights(D d, V s, V t, V (&sp)[4], V (&tp)[4], V (&den)[
   for (int p = 0; p <= 2; ++p)
     for (int r = 0; r <= 2; ++r)
       if (p || r) den[j++] = hn::Add(sp[3 - p], tp[3 - r]);
-  return reciprocals(d, den, OverS3 ? sp[3] : one);
+  reciprocals(d, den, OverS3 ? sp[3] : one);
 }
 
 /// gregoryCornerWeights' eight weights s³ t^r / (s^{3−p} + t^{3−r}): they

@@ -126,31 +126,23 @@ HWY_INLINE void g2TaylorJet(D d, V s, V t, const ck::GregoryCornerTerms &terms, 
 /// t^{3−r} ≪ s³) its error stays below 3ε t^r / s in absolute terms, as
 /// small as the weight's own rounding.
 ///
-/// Where a lane's denominators underflow (the corner s = t = 0 itself,
-/// where the partials have no limit) the weights are not a number there:
-/// the batched evaluations take a sample whose jet is not finite from the
-/// pointwise formula (Surface::evaluate), which knows the corner's limit.
-/// (The expanded forms, s² t^r (p s^{3−p} + 3 t^{3−r}) / D² and the like,
-/// gave 0 · ∞ there; computed instead, on a branch of their own, they made
-/// GCC keep all 24 results in memory: a G² tessellation of a real loop 3–5 %
-/// slower.)
+/// At the corner s = t = 0 itself the partials have no limit: callers
+/// evaluate it pointwise (Patch::evaluateJets; the denominators' reciprocals
+/// are clamped there, and the weights come out 0).
 template <class D, class V> HWY_INLINE void g2RationalWeightJets(D d, V s, V t, V (&rho)[8], V (&rhoS)[8], V (&rhoT)[8]) {
   V sp3[4], tp3[4], inv[8];
-  if (HWY_UNLIKELY(g2CornerWeights(d, s, t, sp3, tp3, inv))) {
-    // Denominators below ~1e-154 (s and t below ~1e-77): the expanded
-    // forms' D² overflowed there.
-    const auto corner = hn::Lt(hn::Add(s, t), hn::Set(d, 1e-77));
-    inv[0] = hn::IfThenElse(corner, hn::NaN(d), inv[0]);
-  }
+  g2CornerWeights(d, s, t, sp3, tp3, inv);
   const V three = hn::Set(d, 3.0);
   // N = s³ t^r, ∂N/∂s = 3 s² t^r, ∂N/∂t = r s³ t^{r−1} for r = 0, 1, 2;
   // ∂D/∂s = (3 − p) s^{2−p} for p = 0, 1, 2 and ∂D/∂t = (3 − r) t^{2−r}.
   const V N[3] = {sp3[3], hn::Mul(sp3[3], tp3[1]), hn::Mul(sp3[3], tp3[2])};
   const V threeS2 = hn::Mul(three, sp3[2]);
   const V Ns[3] = {threeS2, hn::Mul(threeS2, tp3[1]), hn::Mul(threeS2, tp3[2])};
-  const V Nt[3] = {hn::Zero(d), sp3[3], hn::Add(N[1], N[1])}; // Nt[0] unread
-  const V Ds[3] = {threeS2, hn::Add(s, s), hn::Set(d, 1.0)};
-  const V minusDt0 = hn::Mul(hn::Set(d, -3.0), tp3[2]), Dt1 = hn::Add(t, t); // −∂D/∂t on row 0, ∂D/∂t on row 1
+  // ∂N/∂t on rows 1 and 2 (0 on row 0); ∂D/∂s on columns 0 and 1 (1 on
+  // column 2); −∂D/∂t on row 0 and ∂D/∂t on row 1 (1 on row 2).
+  const V Nt1 = sp3[3], Nt2 = hn::Add(N[1], N[1]);
+  const V Ds[2] = {threeS2, hn::Add(s, s)};
+  const V minusDt0 = hn::Mul(hn::Set(d, -3.0), tp3[2]), Dt1 = hn::Add(t, t);
   int j = 0;
   for (int p = 0; p <= 2; ++p)
     for (int r = 0; r <= 2; ++r) {
@@ -159,8 +151,8 @@ template <class D, class V> HWY_INLINE void g2RationalWeightJets(D d, V s, V t, 
       rho[j] = w;
       rhoS[j] = hn::Mul(p == 2 ? hn::Sub(Ns[r], w) : hn::NegMulAdd(w, Ds[p], Ns[r]), u);
       rhoT[j] = r == 0   ? hn::Mul(hn::Mul(w, minusDt0), u)
-                : r == 1 ? hn::Mul(hn::NegMulAdd(w, Dt1, Nt[1]), u)
-                         : hn::Mul(hn::Sub(Nt[2], w), u);
+                : r == 1 ? hn::Mul(hn::NegMulAdd(w, Dt1, Nt1), u)
+                         : hn::Mul(hn::Sub(Nt2, w), u);
       ++j;
     }
 }

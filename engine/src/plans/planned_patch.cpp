@@ -216,18 +216,26 @@ void cubicHermiteSweepJets(const RegularDomain &domain, int i, JetColumns &c) {
   kernels::hermiteSweepGradients(c.count, frame, e.x, e.y, c.fx(i), c.fy(i), c.side(i, 0), c.side(i, 1), c.side(i, 2));
 }
 
-/// The Hermite sweeps of a batch at the domain's exact corners: the two
-/// sides meeting there at their ends exactly (RegularDomain::cornerAt), as
-/// the pointwise sweep (hermiteSweepSides) gives them. s[i]: side i's values.
-void exactSweepEndsAtCorners(const RegularDomain &domain, std::size_t count, const double *u, const double *v,
-                             double *const *s) {
+/// visit(k, j) for each sample k of a batch at the domain's corner j
+/// (RegularDomain::cornerAt).
+template <class Visit>
+void forEachCornerSample(const RegularDomain &domain, std::size_t count, const double *u, const double *v,
+                         const Visit &visit) {
   // Mostly no sample is near the unit circle, where the corners lie: one
   // vectorized pass to find that out.
   int nearCircle = 0;
   for (std::size_t k = 0; k < count; ++k) nearCircle |= u[k] * u[k] + v[k] * v[k] >= 1 - 1e-9;
   if (!nearCircle) return;
   for (std::size_t k = 0; k < count; ++k)
-    if (const int j = domain.cornerAt(u[k], v[k]); j >= 0) s[j][k] = 0, s[domain.wrap(j - 1)][k] = 1;
+    if (const int j = domain.cornerAt(u[k], v[k]); j >= 0) visit(k, j);
+}
+
+/// The Hermite sweeps of a batch at the domain's exact corners: the two
+/// sides meeting there at their ends exactly, as the pointwise sweep
+/// (hermiteSweepSides) gives them. s[i]: side i's values.
+void exactSweepEndsAtCorners(const RegularDomain &domain, std::size_t count, const double *u, const double *v,
+                             double *const *s) {
+  forEachCornerSample(domain, count, u, v, [&](std::size_t k, int j) { s[j][k] = 0, s[domain.wrap(j - 1)][k] = 1; });
 }
 
 } // namespace
@@ -904,6 +912,11 @@ void Patch::evaluateJets(std::size_t count, const double *u, const double *v, Du
           return arrays;
         },
         true, out + first);
+    // A corner itself, where the correction's weights have partials without
+    // a limit: the pointwise formula, which takes the corner's own.
+    forEachCornerSample(domain_, m, columns.x(), columns.y(), [&](std::size_t k, int) {
+      out[first + k] = evaluate(columns.x()[k], columns.y()[k]);
+    });
   }
 }
 
