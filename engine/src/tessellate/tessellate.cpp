@@ -799,9 +799,16 @@ Mesh tessellateToTolerance(const Surface &surface, const TessellationOptions &op
   // Faces whose angle stopped falling as their resolution grew: judged by
   // the deviation alone from then on.
   std::vector<char> angleUnreachable(static_cast<std::size_t>(faces), 0);
-  auto missed = [&](const FaceAccuracy &a, int f) {
-    return a.deviation[f] > target || (angleLimit > 0 && !angleUnreachable[f] && a.angle[f] > angleLimit);
+  // Whether face f misses the limits, the angle not asked where `excused`.
+  auto misses = [&](const FaceAccuracy &a, int f, const std::vector<char> &excused) {
+    return a.deviation[f] > target || (angleLimit > 0 && !excused[f] && a.angle[f] > angleLimit);
   };
+  auto missesAny = [&](const FaceAccuracy &a, const std::vector<char> &excused) {
+    for (int f = 0; f < faces; ++f)
+      if (misses(a, f, excused)) return true;
+    return false;
+  };
+  auto missed = [&](const FaceAccuracy &a, int f) { return misses(a, f, angleUnreachable); };
   TessellationOptions pass = options;
   pass.progress = nullptr; // several passes: no single fraction to report
   Mesh mesh;
@@ -916,8 +923,7 @@ Mesh tessellateToTolerance(const Surface &surface, const TessellationOptions &op
     r.memoryLimited = memoryLimited;
     for (int f = 0; f < faces; ++f)
       if (angleUnreachable[f]) r.angleUnreachableFaces.push_back(f);
-    r.met = true;
-    for (int f = 0; f < faces; ++f) r.met = r.met && !missed(accuracy, f);
+    r.met = !missesAny(accuracy, angleUnreachable);
     // The uniform comparison: the smallest uniform resolution whose mesh,
     // measured the same way, meets the same limits — bisection between one
     // and the largest face resolution, grown by quarters until it meets
@@ -930,9 +936,6 @@ Mesh tessellateToTolerance(const Surface &surface, const TessellationOptions &op
     // memory's limit.
     const double reach = std::max(32 * static_cast<double>(mesh.positions.size()), 0x1p23);
     std::vector<char> exempt = angleUnreachable;
-    auto missedUniform = [&](const FaceAccuracy &a, int f) {
-      return a.deviation[f] > target || (angleLimit > 0 && !exempt[f] && a.angle[f] > angleLimit);
-    };
     enum class Uniform { Meets, Misses, TooLarge };
     auto measureUniform = [&](int uniform, FaceAccuracy *measured) {
       const Layout layout = makeLayout(surface, uniform);
@@ -941,8 +944,7 @@ Mesh tessellateToTolerance(const Surface &surface, const TessellationOptions &op
       std::vector<std::array<Vec2, 3>> d;
       tessellateInto(surface, pass, layout, nullptr, m, &d);
       FaceAccuracy a = measureAccuracy(surface, m, d, firstInteriorVertex(layout));
-      bool meets = true;
-      for (int f = 0; f < faces; ++f) meets = meets && !missedUniform(a, f);
+      const bool meets = !missesAny(a, exempt);
       if (measured) *measured = std::move(a);
       return meets ? Uniform::Meets : Uniform::Misses;
     };
@@ -957,11 +959,7 @@ Mesh tessellateToTolerance(const Surface &surface, const TessellationOptions &op
       if (angleLimit > 0 && grown >= 1.25 * high)
         for (int f = 0; f < faces; ++f)
           if (now.deviation[f] <= target && now.angle[f] > angleLimit && now.angle[f] > 0.9 * last.angle[f]) exempt[f] = 1;
-      if (at == Uniform::Misses) {
-        bool meets = true; // with the faces just exempted
-        for (int f = 0; f < faces; ++f) meets = meets && !missedUniform(now, f);
-        if (meets) at = Uniform::Meets;
-      }
+      if (at == Uniform::Misses && !missesAny(now, exempt)) at = Uniform::Meets; // with the faces just exempted
       high = grown, last = std::move(now);
     }
     if (at == Uniform::Meets) {
