@@ -16,6 +16,7 @@
 #include "bezier/bezier_surface.hpp"
 #include "curvenet/error.hpp"
 #include "curvenet/surface.hpp"
+#include "patches/corner_grid.hpp"
 #include "patches/patch.hpp"
 #include "patches/surface_impl.hpp"
 #include "plans/face_errors.hpp"
@@ -118,6 +119,28 @@ bool patchFolds(const Patch &patch, int rows = kFoldRows) {
       }
   }
   return false;
+}
+
+/// The corners of the patch whose neighbourhood folds on the corner grid
+/// (patches/corner_grid.hpp): the normal turned over closer to the corner
+/// than the fold grid's first row, which patchFolds cannot see.
+std::vector<int> foldedCorners(const Patch &patch) {
+  const RegularDomain &domain = patch.domain();
+  std::vector<int> corners;
+  std::array<double, CornerGrid::kSize> us, vs;
+  std::array<DualVec3, CornerGrid::kSize> at;
+  std::array<Vec3, CornerGrid::kSize> normals;
+  for (int k = 0; k < domain.sides(); ++k) {
+    for (int i = 0; i < CornerGrid::kRings; ++i)
+      for (int j = 0; j < CornerGrid::kRays; ++j) {
+        const Vec2 uv = CornerGrid::point(domain.corner(k), domain.corner(k - 1), domain.corner(k + 1), i, j);
+        us[CornerGrid::index(i, j)] = uv.x, vs[CornerGrid::index(i, j)] = uv.y;
+      }
+    patch.evaluateBatch(CornerGrid::kSize, us.data(), vs.data(), at.data());
+    for (std::size_t s = 0; s < CornerGrid::kSize; ++s) normals[s] = cross(at[s].du, at[s].dv);
+    if (CornerGrid::folds(normals)) corners.push_back(k);
+  }
+  return corners;
 }
 
 /// True when the patch's normal du × dv points along each side's fence
@@ -448,38 +471,51 @@ const NormalFence *fenceOf(const Impl &impl, int e, int f) {
 }
 
 /// The first of these variants of a patch that folds as built (with the
-/// corner shares `asked` its ribbons ask for) that does not fold
-/// (docs/surfaces.md, Folds): eq. 17's corners alone (μ = 0 everywhere), the
-/// two-ribbon blend at every corner (μ = 1), then both again with the
-/// ribbons' cross-derivatives at three quarters and at half their length.
-/// `build(scale, share)` makes one: the end targets scaled (they take the
-/// neighbouring curves' parameter speed, whatever the face's extent across:
-/// a planar half disc with a wavy rim reached past its diameter) and every
-/// share set to `share`. Each variant keeps the scheme's continuity across
-/// the sides: T stays in its fence's tangent plane, a parabolic ribbon's C is
-/// II(T, T) N of the scaled T (the same second fundamental form), and both
-/// corner forms meet each ribbon to the scheme's order on its own side
-/// whatever the two ribbons' disagreement at the corner. A variant is taken
-/// when `accepts` it and it folds neither on the fold grid nor on one of
-/// kFineFoldRows rows (box.obj's triangles with the blend pass the first and
-/// fold near their centre on the second; at 3/4 length they pass both);
-/// failing that, the first that passes the fold grid; null when all fold.
+/// corner shares its ribbons ask for), inside or at a corner, that does not
+/// fold (docs/surfaces.md, Folds): the asked shares with the two-ribbon blend alone (μ = 1) at the
+/// corners `foldingCorners` (foldedCorners), then eq. 17's corners alone
+/// (μ = 0 everywhere), the two-ribbon blend at every corner (μ = 1), then
+/// both again with the ribbons' cross-derivatives at three quarters and at
+/// half their length. `build(scale, shares)` makes one: the end targets
+/// scaled (they take the neighbouring curves' parameter speed, whatever the
+/// face's extent across: a planar half disc with a wavy rim reached past
+/// its diameter) and the corners' shares set. Each variant keeps the
+/// scheme's continuity across the sides: T stays in its fence's tangent
+/// plane, a parabolic ribbon's C is II(T, T) N of the scaled T (the same
+/// second fundamental form), and both corner forms meet each ribbon to the
+/// scheme's order on its own side whatever the two ribbons' disagreement at
+/// the corner. A variant is taken when `accepts` it and it folds neither on
+/// the fold grid nor on one of kFineFoldRows rows (box.obj's triangles with
+/// the blend pass the first and fold near their centre on the second; at
+/// 3/4 length they pass both) nor at a corner; failing that, when the patch
+/// folds on the fold grid (`foldsInside`), the first variant that passes
+/// the fold grid; else null.
 /// Three times the fold grid, below Patch::kTableResolution: no ribbon
 /// tables are built for a variant.
 constexpr int kFineFoldRows = 3 * kFoldRows;
 static_assert(kFineFoldRows < Patch::kTableResolution);
 template <class Build, class Accepts, class Folds>
-std::shared_ptr<const Patch> unfoldedVariant(const std::vector<double> &asked, const Build &build,
-                                             const Accepts &accepts, const Folds &folds) {
-  std::shared_ptr<const Patch> coarse;
+std::shared_ptr<const Patch> unfoldedVariant(const Patch &patch, bool foldsInside, std::span<const int> foldingCorners,
+                                             const Build &build, const Accepts &accepts, const Folds &folds) {
+  const std::vector<double> &asked = patch.blendShares();
+  const int n = patch.domain().sides();
+  std::vector<std::pair<double, std::vector<double>>> variants;
+  std::vector<double> blended = asked;
+  for (const int k : foldingCorners) blended[k] = 1;
+  variants.push_back({1.0, std::move(blended)});
   for (const double scale : {1.0, 0.75, 0.5})
-    for (const double share : {0.0, 1.0}) {
-      if (scale == 1.0 && std::all_of(asked.begin(), asked.end(), [share](double mu) { return mu == share; })) continue;
-      std::shared_ptr<const Patch> candidate = build(scale, share);
-      if (folds(*candidate, kFoldRows) || !accepts(*candidate)) continue;
-      if (!folds(*candidate, kFineFoldRows)) return candidate;
-      if (!coarse) coarse = std::move(candidate);
-    }
+    for (const double share : {0.0, 1.0}) variants.push_back({scale, std::vector<double>(n, share)});
+  std::shared_ptr<const Patch> coarse;
+  for (std::size_t v = 0; v < variants.size(); ++v) {
+    const auto &[scale, shares] = variants[v];
+    // The patch itself, or a variant already tried.
+    if ((scale == 1.0 && shares == asked) || std::find(variants.begin(), variants.begin() + v, variants[v]) != variants.begin() + v)
+      continue;
+    std::shared_ptr<const Patch> candidate = build(scale, shares);
+    if (folds(*candidate, kFoldRows) || !accepts(*candidate)) continue;
+    if (!folds(*candidate, kFineFoldRows) && foldedCorners(*candidate).empty()) return candidate;
+    if (!coarse && foldsInside) coarse = std::move(candidate);
+  }
   return coarse;
 }
 
@@ -593,25 +629,35 @@ FaceBuild buildFace(const Impl &impl, int f) {
     result.patch = std::make_shared<const Patch>(std::move(ribbons), impl.options);
   }
   result.folded = folds(*result.patch);
-  // A face that folds with the shares its ribbons ask for is built again
-  // with uniform shares and shorter cross-derivatives (unfoldedVariant).
-  // gregory-g2 also wants each side's normal to face its fence (a face turned
+  if (!g1 && !g2) return result;
+  // The Gregory schemes' patch for given corner shares, its ribbons' end
+  // targets scaled by `scale`.
+  auto withShares = [&](std::vector<double> shares, double scale) -> std::shared_ptr<const Patch> {
+    std::vector<LinearRibbon> scaled = g2 ? ribbons : linear;
+    if (scale != 1.0)
+      for (int i = 0; i < n; ++i)
+        scaled[i].setEndConditions(startTargets[i] * scale, endTargets[i] * scale,
+                                   g2 ? LinearRibbon::ScalarBlend::Quintic : LinearRibbon::ScalarBlend::Linear);
+    if (g2) return g2Patch(std::move(scaled), std::move(shares), scale);
+    return std::make_shared<const Patch>(std::move(scaled), impl.options, std::vector<ParabolicRibbon>{},
+                                         std::move(shares));
+  };
+  // gregory-g2 wants each side's normal to face its fence (a face turned
   // over along a side meets its neighbour's normals there and passes the
   // fold grid).
-  if (result.folded && (g1 || g2)) {
-    auto build = [&](double scale, double share) -> std::shared_ptr<const Patch> {
-      std::vector<LinearRibbon> scaled = g2 ? ribbons : linear;
-      if (scale != 1.0)
-        for (int i = 0; i < n; ++i)
-          scaled[i].setEndConditions(startTargets[i] * scale, endTargets[i] * scale,
-                                     g2 ? LinearRibbon::ScalarBlend::Quintic : LinearRibbon::ScalarBlend::Linear);
-      if (g2) return g2Patch(std::move(scaled), std::vector<double>(n, share), scale);
-      return std::make_shared<const Patch>(std::move(scaled), impl.options, std::vector<ParabolicRibbon>{},
-                                           std::vector<double>(n, share));
-    };
-    auto accepts = [g2](const Patch &patch) { return !g2 || facesItsFences(patch); };
+  auto accepts = [g2](const Patch &patch) { return !g2 || facesItsFences(patch); };
+  // A face that folds with the shares its ribbons ask for is built again
+  // (unfoldedVariant): first with the two-ribbon blend alone at the corners
+  // that fold below the fold grid (foldedCorners; docs/surfaces.md, Corner
+  // folds: on the public sketches eq. 17's corner interpolant turned the
+  // normal over within 2e-3 of the diagonal of corners whose two curves
+  // leave in nearly one direction, the blend at none), then with uniform
+  // shares and shorter cross-derivatives.
+  const std::vector<int> foldingCorners = foldedCorners(*result.patch);
+  if (result.folded || !foldingCorners.empty()) {
+    auto build = [&](double scale, const std::vector<double> &shares) { return withShares(shares, scale); };
     if (std::shared_ptr<const Patch> unfolded =
-            unfoldedVariant(g2 ? blendShares : result.patch->blendShares(), build, accepts, folds)) {
+            unfoldedVariant(*result.patch, result.folded, foldingCorners, build, accepts, folds)) {
       result.patch = std::move(unfolded);
       result.folded = false;
     }

@@ -3,10 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iterator>
 #include <vector>
 
 #include "curvenet/error.hpp"
+#include "patches/corner_grid.hpp"
 
 namespace curvenet {
 inline namespace v1 {
@@ -87,40 +87,29 @@ FaceShape measureFace(const Surface &surface, int f, int resolution) {
   return out;
 }
 
-/// Corner k's polar grid: points c + ρ ((1 − α) (c₋ − c) + α (c₊ − c))
-/// towards the two neighbouring corners c₋, c₊, ρ from 2e-4 to 0.2 in
-/// steps of about √3 and α across the corner's wedge; neighbours in ρ or
-/// α whose normals point into opposite half-spaces make a fold (the test
-/// of the fold grid, Surface::foldedFaces, at the corner's scale).
+/// The corners of face f whose neighbourhood folds on the corner grid
+/// (patches/corner_grid.hpp), with the extent of the samples turned over
+/// against the grid's outer middle one.
 std::vector<CornerFold> cornerFolds(const Surface &surface, int f) {
-  constexpr double kRadii[] = {2e-4, 3.5e-4, 6e-4, 1e-3, 2e-3, 3.5e-3, 6e-3, 1e-2, 2e-2, 3.5e-2, 6e-2, 0.1, 0.2};
-  constexpr int kRings = std::size(kRadii), kRays = 9;
   const int n = surface.domainSides(f);
   std::vector<CornerFold> folds;
-  std::vector<Vec2> uv(static_cast<std::size_t>(kRings * kRays) + 1);
+  std::vector<Vec2> uv(CornerGrid::kSize + 1);
   std::vector<SurfacePoint> at(uv.size());
+  std::vector<Vec3> normals(CornerGrid::kSize);
   for (int k = 0; k < n; ++k) {
     const Vec2 c = surface.domainCorner(f, k);
-    const Vec2 toNext = surface.domainCorner(f, (k + 1) % n) - c, toPrevious = surface.domainCorner(f, (k + n - 1) % n) - c;
-    for (int i = 0; i < kRings; ++i)
-      for (int j = 0; j < kRays; ++j) {
-        const double alpha = (j + 0.5) / kRays;
-        uv[i * kRays + j] = c + (toPrevious * (1 - alpha) + toNext * alpha) * kRadii[i];
-      }
+    const Vec2 previous = surface.domainCorner(f, (k + n - 1) % n), next = surface.domainCorner(f, (k + 1) % n);
+    for (int i = 0; i < CornerGrid::kRings; ++i)
+      for (int j = 0; j < CornerGrid::kRays; ++j) uv[CornerGrid::index(i, j)] = CornerGrid::point(c, previous, next, i, j);
     uv.back() = c;
     surface.evaluate(f, uv, at);
-    auto normal = [&](int i, int j) { return at[static_cast<std::size_t>(i * kRays + j)].normal; };
-    bool folded = false;
-    for (int i = 0; i < kRings && !folded; ++i)
-      for (int j = 0; j < kRays && !folded; ++j)
-        folded = (j + 1 < kRays && dot(normal(i, j), normal(i, j + 1)) <= 0) ||
-                 (i + 1 < kRings && dot(normal(i, j), normal(i + 1, j)) <= 0);
-    if (!folded) continue;
-    const Vec3 outer = normal(kRings - 1, kRays / 2), corner = at.back().point;
+    for (std::size_t s = 0; s < CornerGrid::kSize; ++s) normals[s] = at[s].normal;
+    if (!CornerGrid::folds(normals)) continue;
+    const Vec3 outer = normals[CornerGrid::index(CornerGrid::kRings - 1, CornerGrid::kRays / 2)];
+    const Vec3 corner = at.back().point;
     double extent = 0;
-    for (int i = 0; i < kRings; ++i)
-      for (int j = 0; j < kRays; ++j)
-        if (dot(normal(i, j), outer) <= 0) extent = std::max(extent, norm(at[i * kRays + j].point - corner));
+    for (std::size_t s = 0; s < CornerGrid::kSize; ++s)
+      if (dot(normals[s], outer) <= 0) extent = std::max(extent, norm(at[s].point - corner));
     folds.push_back({f, k, extent / surface.network().diagonal()});
   }
   return folds;
