@@ -33,6 +33,7 @@
 #include <map>
 #include <numbers>
 #include <random>
+#include <set>
 
 #include "analysis/editable_curve.hpp"
 #include "bezier/bezier_surface.hpp"
@@ -45,6 +46,7 @@
 #include "curvenet/sketch.hpp"
 #include "curvenet/surface.hpp"
 #include "curvenet/tessellate.hpp"
+#include "approximation/triangle_bvh.hpp"
 #include "patches/corner_grid.hpp"
 #include "patches/patch.hpp"
 
@@ -152,6 +154,7 @@ NetworkDescription skewXNodes(NetworkDescription d, double degrees, int &skewed)
 struct Figures {
   int folds = 0;
   int cornerFolds = 0; ///< ShapeReport::cornerFolds: normals turning over near a corner, below the fold grid
+  int intersections = 0; ///< ShapeReport::intersections: faces passing through each other or themselves
   double diagonalRatio = 0;
   double maxJump = 0;     ///< gregory-g2: across edges whose two vertices are G²-admissible
   double maxAngleDeg = 0; ///< normal angle across shared segments
@@ -175,6 +178,7 @@ Figures measure(const Network &network, Scheme scheme, CurveHandling curves) {
   const ShapeReport shape = measureShape(surface, {2});
   f.excursion = shape.maxExcursion;
   f.cornerFolds = int(shape.cornerFolds.size());
+  f.intersections = int(shape.intersections.size());
   if (scheme == Scheme::GregoryG2) {
     const Network &built = surface.network();
     const NetworkAnalysis analysis = analyzeNetwork(built);
@@ -198,6 +202,7 @@ struct Expectation {
   double maxJump; ///< gregory-g2 only
   double maxAngleDeg;
   int maxCornerFolds = 0;
+  int maxIntersections = 0;
 };
 
 const char *const kBase = "sphere-dodecahedron";
@@ -250,14 +255,15 @@ std::vector<Case> corpus() {
 bool printTable() { return std::getenv("CURVENET_CORPUS_TABLE") != nullptr; }
 
 void printRow(const std::string &name, Scheme scheme, const char *curves, const Figures &f) {
-  std::printf("| %-18s | %-16s | %-8s | %5d | %5d | %8.4f | %9.3g | %9.3g | %9.3g | %5zu |\n", name.c_str(),
-              schemeName(scheme).c_str(), curves, f.folds, f.cornerFolds, f.diagonalRatio, f.maxJump, f.maxAngleDeg,
-              f.excursion, f.repairMoves);
+  std::printf("| %-18s | %-16s | %-8s | %5d | %5d | %5d | %8.4f | %9.3g | %9.3g | %9.3g | %5zu |\n", name.c_str(),
+              schemeName(scheme).c_str(), curves, f.folds, f.cornerFolds, f.intersections, f.diagonalRatio, f.maxJump,
+              f.maxAngleDeg, f.excursion, f.repairMoves);
 }
 
 void checkAgainst(const Figures &f, const Expectation &e) {
   EXPECT_LE(f.folds, e.maxFolds);
   EXPECT_LE(f.cornerFolds, e.maxCornerFolds);
+  EXPECT_LE(f.intersections, e.maxIntersections);
   EXPECT_LE(f.diagonalRatio, e.maxDiagonalRatio);
   EXPECT_LE(f.maxJump, e.maxJump);
   EXPECT_LE(f.maxAngleDeg, e.maxAngleDeg);
@@ -280,7 +286,7 @@ void runCase(const std::string &name, const Network &network, const Expectation 
 
 TEST(RobustnessCorpus, PerturbedBuiltins) {
   if (printTable())
-    std::printf("| case | scheme | curves | folds | corner folds | diag ratio | max jump (G2-adm.) | max normal angle ° | "
+    std::printf("| case | scheme | curves | folds | corner folds | intersections | diag ratio | max jump (G2-adm.) | max normal angle ° | "
                 "excursion | moves |\n");
   for (const Case &c : corpus()) {
     const Network network = Network::build(c.make(), c.name);
@@ -357,15 +363,25 @@ TEST(RobustnessCorpus, SharedSketches) {
   // samples (ShapeReport::cornerFolds, turned-over normals within
   // 3e-4–2e-3 of the diagonal: doghead 2 corners, dress 4, bathtub 4), are
   // gone since such corners take the two-ribbon blend (buildFace).
+  // Not yet met: under gregory-g2 faces pass through each other without
+  // folding in their own parameters (ShapeReport::intersections), where a
+  // patch curls over a thin part: doghead's ear stalks (faces 10 and 11,
+  // 34 and 35), bathtub faces 1 and 20, 47 and 48, and face 34 through
+  // itself; and under gregory-g1 five faces of sewing_machine each through
+  // itself (6, 7, 10, 11, 36: normals turned against the face's mean
+  // normal over up to 3 % of its samples, gradually enough for the fold
+  // grid's neighbour test). composite-ribbon, the .lop files and the
+  // built-ins have none.
+  auto intersections = [](int count) { return Expectation{0, 1.05, 1e-4, 1e-6, 0, count}; };
   const std::map<std::string, std::array<Expectation, 3>> rows = {
-      {"doghead.obj", {{kGoal, kGoal, kGoal}}},
+      {"doghead.obj", {{kGoal, kGoal, intersections(2)}}},
       {"spherecylinder.obj", {{kGoal, kGoal, kGoal}}},
-      {"sewing_machine.obj", {{kGoal, kGoal, kGoal}}},
+      {"sewing_machine.obj", {{intersections(5), kGoal, kGoal}}},
       {"box.obj", {{kGoal, kGoal, kGoal}}},
       {"dress.obj", {{kGoal, kGoal, kGoal}}},
       {"ellipsetorus.obj", {{kGoal, kGoal, kGoal}}},
       {"iron.obj", {{kGoal, kGoal, kGoal}}},
-      {"bathtub.obj", {{kGoal, kGoal, kGoal}}},
+      {"bathtub.obj", {{kGoal, kGoal, intersections(3)}}},
   };
 
   int files = 0;
@@ -446,6 +462,109 @@ TEST(RobustnessCorpus, CornersThatWouldFoldTakeTheTwoRibbonBlend) {
     }
   }
   EXPECT_GE(avoided, 2);
+}
+
+// The overlap traversal of TriangleBvh gives exactly the brute-force pairs of
+// triangles whose boxes overlap, on random triangles of mixed sizes.
+TEST(SelfIntersection, OverlappingPairsAreTheBruteForcePairs) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<Vec3> positions;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  for (int t = 0; t < 400; ++t) {
+    const Vec3 centre{unit(random), unit(random), unit(random)};
+    const double size = t % 10 == 0 ? 0.3 : 0.04;
+    for (int k = 0; k < 3; ++k)
+      positions.push_back(centre + Vec3{unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5} * size);
+    triangles.push_back({std::uint32_t(3 * t), std::uint32_t(3 * t + 1), std::uint32_t(3 * t + 2)});
+  }
+  auto box = [&](int t) {
+    BoundingBox b;
+    for (std::uint32_t v : triangles[t]) b.add(positions[v]);
+    return b;
+  };
+  std::set<std::pair<int, int>> expected, found;
+  for (int a = 0; a < 400; ++a)
+    for (int b = a + 1; b < 400; ++b) {
+      const BoundingBox A = box(a), B = box(b);
+      bool overlap = true;
+      for (int i = 0; i < 3; ++i) overlap = overlap && A.min[i] <= B.max[i] && B.min[i] <= A.max[i];
+      if (overlap) expected.insert({a, b});
+    }
+  TriangleBvh(positions, triangles).forEachOverlappingPair([&](int a, int b) {
+    EXPECT_LT(a, b);
+    EXPECT_TRUE(found.insert({a, b}).second) << a << " " << b << " visited twice";
+  });
+  EXPECT_GT(expected.size(), 50u);
+  EXPECT_EQ(found, expected);
+}
+
+// trianglesCross: a triangle pierced by another, one passing through the
+// other's middle like a chain's links, apart, side by side in one plane, and
+// meeting only at a shared edge or corner (not a crossing).
+TEST(SelfIntersection, TrianglesCrossWhereAnEdgeOfOnePassesThroughTheOther) {
+  const std::array<Vec3, 3> flat{Vec3{0, 0, 0}, Vec3{2, 0, 0}, Vec3{0, 2, 0}};
+  const std::array<Vec3, 3> pierce{Vec3{0.5, 0.5, -1}, Vec3{0.5, 0.5, 1}, Vec3{3, 3, 0.5}};
+  const std::optional<Vec3> x = trianglesCross(flat, pierce);
+  ASSERT_TRUE(x.has_value());
+  EXPECT_NEAR(norm(*x - Vec3{0.5, 0.5, 0}), 0, 1e-15);
+  EXPECT_TRUE(trianglesCross(pierce, flat).has_value());
+  const std::array<Vec3, 3> link{Vec3{0.5, 0.5, -1}, Vec3{0.5, 0.5, 1}, Vec3{-3, -3, 0}};
+  EXPECT_TRUE(trianglesCross(flat, link).has_value());
+  const std::array<Vec3, 3> above{Vec3{0, 0, 1}, Vec3{2, 0, 1}, Vec3{0, 2, 1.5}};
+  EXPECT_FALSE(trianglesCross(flat, above).has_value());
+  const std::array<Vec3, 3> beside{Vec3{3, 0, 0}, Vec3{5, 0, 0}, Vec3{3, 2, 0}};
+  EXPECT_FALSE(trianglesCross(flat, beside).has_value());
+  const std::array<Vec3, 3> hinged{Vec3{2, 0, 0}, Vec3{0, 2, 0}, Vec3{0, 0, 1}};
+  EXPECT_FALSE(trianglesCross(flat, hinged).has_value());
+  const std::array<Vec3, 3> cornered{Vec3{0, 0, 0}, Vec3{-1, 0, 1}, Vec3{0, -1, 1}};
+  EXPECT_FALSE(trianglesCross(flat, cornered).has_value());
+}
+
+// Faces that pass through each other (ShapeReport::intersections) do so on
+// a finer mesh too: for each pair the shape report names on doghead.obj's
+// gregory-g2 surface, a brute-force search over every pair of the two
+// faces' triangles near the reported point at 64 intervals per segment (no
+// hierarchy) finds crossing triangles within 2 % of the diagonal of it. And
+// doghead's gregory-g1 and composite-ribbon surfaces have none.
+TEST(SelfIntersection, FacesPassingThroughEachOtherAreFoundAgainOnAFinerMesh) {
+  const std::string path = std::string(CURVENET_SHARED_DATA_DIR) + "/sketches/doghead.obj";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent: no sketch whose faces intersect";
+  const Network network = Network::build(networkFromCurveGraph(readCurveGraphFile(path), {}, path).description, path);
+  for (Scheme scheme : {Scheme::GregoryG1, Scheme::CompositeRibbon})
+    EXPECT_TRUE(measureShape(Surface::build(network, {scheme})).intersections.empty()) << schemeName(scheme);
+  const Surface surface = Surface::build(network, {Scheme::GregoryG2});
+  const ShapeReport shape = measureShape(surface);
+  ASSERT_EQ(shape.intersections.size(), 2u);
+  for (const FaceShape &face : shape.faces)
+    EXPECT_EQ(face.intersects, std::any_of(shape.intersections.begin(), shape.intersections.end(),
+                                           [&](const FaceIntersection &x) { return x.faceA == face.face || x.faceB == face.face; }));
+  EXPECT_FALSE(shape.acceptable());
+  const Mesh mesh = tessellate(surface, {64, 0});
+  for (const FaceIntersection &x : shape.intersections) {
+    SCOPED_TRACE("faces " + std::to_string(x.faceA) + " and " + std::to_string(x.faceB));
+    auto corners = [&](std::uint32_t t) {
+      const auto &tri = mesh.triangles[t];
+      return std::array<Vec3, 3>{mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]};
+    };
+    // The two faces' triangles within 3 % of the diagonal of the point.
+    auto near = [&](int face) {
+      std::vector<std::uint32_t> found;
+      for (std::uint32_t t = mesh.faceTriangleStart[face]; t < mesh.faceTriangleStart[face + 1]; ++t)
+        if (norm(mesh.positions[mesh.triangles[t][0]] - x.point) < 0.03 * network.diagonal()) found.push_back(t);
+      return found;
+    };
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const std::uint32_t s : near(x.faceA))
+      for (const std::uint32_t t : near(x.faceB)) {
+        const auto &a = mesh.triangles[s], &b = mesh.triangles[t];
+        if (std::any_of(a.begin(), a.end(), [&](std::uint32_t v) { return v == b[0] || v == b[1] || v == b[2]; }))
+          continue;
+        if (const std::optional<Vec3> crossing = trianglesCross(corners(s), corners(t)))
+          nearest = std::min(nearest, norm(*crossing - x.point) / network.diagonal());
+      }
+    EXPECT_LE(nearest, 0.02);
+  }
 }
 
 // A model far from the origin is translated to its centre before anything

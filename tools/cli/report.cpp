@@ -119,11 +119,15 @@ nlohmann::json shapeReport(const ShapeReport &shape) {
   nlohmann::json faces = nlohmann::json::array();
   for (const FaceShape &f : shape.faces)
     faces.push_back({{"face", f.face}, {"folded", f.folded}, {"folds_at_corner", f.foldsAtCorner},
-                     {"excursion", f.excursion}, {"fairness", f.fairness}});
+                     {"intersects", f.intersects}, {"excursion", f.excursion}, {"fairness", f.fairness}});
   nlohmann::json corners = nlohmann::json::array();
   for (const CornerFold &c : shape.cornerFolds) corners.push_back({{"face", c.face}, {"corner", c.corner}, {"extent", c.extent}});
+  nlohmann::json intersections = nlohmann::json::array();
+  for (const FaceIntersection &x : shape.intersections)
+    intersections.push_back({{"faces", {x.faceA, x.faceB}}, {"point", {x.point.x, x.point.y, x.point.z}}});
   return {{"folded_faces", shape.foldedFaces},
           {"corner_folds", std::move(corners)},
+          {"intersections", std::move(intersections)},
           {"max_excursion", shape.maxExcursion},
           {"worst_excursion_face", shape.worstExcursionFace},
           {"excursion_bound", kExcursionBound},
@@ -388,10 +392,18 @@ void printReportTable(const nlohmann::json &report) {
                     c["corner"].get<int>(), c["extent"].get<double>());
       corners += one;
     }
-    std::printf("\nshape: %zu folded faces, %zu corner folds%s%s%s, max excursion %.3g of the diagonal (face %d, bound "
-                "%.3g), fairness %.3g (max %.3g, face %d)%s\n",
+    std::string crossing;
+    for (const auto &x : sh["intersections"]) {
+      char one[64];
+      std::snprintf(one, sizeof one, "%sfaces %d and %d", crossing.empty() ? "" : "; ", x["faces"][0].get<int>(),
+                    x["faces"][1].get<int>());
+      crossing += one;
+    }
+    std::printf("\nshape: %zu folded faces, %zu corner folds%s%s%s, %zu face intersections%s%s%s, max excursion %.3g "
+                "of the diagonal (face %d, bound %.3g), fairness %.3g (max %.3g, face %d)%s\n",
                 sh["folded_faces"].size(), sh["corner_folds"].size(), corners.empty() ? "" : " [",
-                corners.c_str(), corners.empty() ? "" : "; extent of the diagonal]",
+                corners.c_str(), corners.empty() ? "" : "; extent of the diagonal]", sh["intersections"].size(),
+                crossing.empty() ? "" : " [", crossing.c_str(), crossing.empty() ? "" : "]",
                 sh["max_excursion"].get<double>(), sh["worst_excursion_face"].get<int>(),
                 sh["excursion_bound"].get<double>(), sh["fairness"].get<double>(), sh["max_fairness"].get<double>(),
                 sh["worst_fairness_face"].get<int>(), sh["acceptable"].get<bool>() ? "" : " — REJECTED faces listed in --json");

@@ -83,13 +83,27 @@ void enforceShape(const Surface &surface, const ShapeReport &shape, bool strict)
                    "corner's two curves leave it in nearly the same direction): try another scheme or bend the "
                    "curves apart\n",
                    c.face, schemeName(surface.faceOptions(c.face).scheme).c_str(), c.corner, c.extent);
+  if (!strict)
+    for (const FaceIntersection &x : shape.intersections) {
+      const std::string where = x.faceA == x.faceB ? "face " + std::to_string(x.faceA) + ": the " +
+                                                         schemeName(surface.faceOptions(x.faceA).scheme) +
+                                                         " patch passes through itself"
+                                                   : "faces " + std::to_string(x.faceA) + " and " +
+                                                         std::to_string(x.faceB) + ": the " +
+                                                         schemeName(surface.faceOptions(x.faceA).scheme) +
+                                                         " patches pass through each other";
+      std::fprintf(stderr,
+                   "curvenet: warning: %s near (%.4g, %.4g, %.4g), where no normal turns over in either's own "
+                   "parameters (typically a patch curling over a thin part of the model): try another scheme\n",
+                   where.c_str(), x.point.x, x.point.y, x.point.z);
+    }
   if (strict && !rejected.empty())
     throw InputError("", "faces " + rejected,
-                     "the surface folds or leaves its boundary's box by more than " +
+                     "the surface folds, passes through itself or leaves its boundary's box by more than " +
                          std::to_string(kExcursionBound) + " of the diagonal (largest excursion " +
                          std::to_string(shape.maxExcursion) + ", " + std::to_string(shape.foldedFaces.size()) +
-                         " folded faces, " + std::to_string(shape.cornerFolds.size()) +
-                         " corner folds); --strict writes nothing");
+                         " folded faces, " + std::to_string(shape.cornerFolds.size()) + " corner folds, " +
+                         std::to_string(shape.intersections.size()) + " face intersections); --strict writes nothing");
 }
 
 void noteRepair(const Surface &surface) {

@@ -12,6 +12,14 @@
 //    same direction, where |du × dv| vanishes: ~5e-4 of the diagonal on a
 //    few G² faces of the public sketches): each corner's neighbourhood on a
 //    polar grid, 2e-4 to 0.2 of the way to the neighbouring corners;
+//  * intersections — faces that pass through each other, or a face through
+//    itself, without folding in its own parameters (a G² patch curling over
+//    its neighbour along a thin tube: doghead.obj, bathtub.obj): the
+//    surface's tessellations at 16 and at 32 intervals per segment are
+//    searched for triangles that cross, triangles sharing a mesh vertex
+//    left out; a pair of faces counts when both resolutions find it (the
+//    chords of a coarse mesh can cross where the surface does not, and
+//    those go as the resolution grows);
 //  * excursion — how far the patch leaves the box of its boundary: the
 //    growth of the bounding-box diagonal when the samples are added to the
 //    box of the face's boundary curves (sampled at 8·resolution points per
@@ -56,10 +64,18 @@ struct CornerFold {
   double extent = 0;
 };
 
+/// Faces `faceA` ≤ `faceB` whose surfaces pass through each other (the
+/// same face: through itself), and a point where they do.
+struct FaceIntersection {
+  int faceA = -1, faceB = -1;
+  Vec3 point;
+};
+
 struct FaceShape {
   int face = -1;
   bool folded = false;
   bool foldsAtCorner = false; ///< a CornerFold at one of its corners
+  bool intersects = false;    ///< in a FaceIntersection
   double excursion = 0; ///< relative to the model's diagonal, ≥ 0
   double fairness = 0;  ///< dimensionless (see above)
   double area = 0;      ///< surface area of the samples (model units²)
@@ -69,19 +85,22 @@ struct ShapeReport {
   std::vector<FaceShape> faces; ///< by face index
   std::vector<int> foldedFaces;
   std::vector<CornerFold> cornerFolds; ///< by face, then corner
+  std::vector<FaceIntersection> intersections; ///< by faceA, then faceB
   double maxExcursion = 0;
   int worstExcursionFace = -1;
   /// Area-weighted mean of the faces' fairness, and the largest.
   double fairness = 0, maxFairness = 0;
   int worstFairnessFace = -1;
-  /// Faces that fold (inside or at a corner) or whose excursion exceeds
-  /// kExcursionBound, ascending.
+  /// Faces that fold (inside or at a corner), pass through a face, or whose
+  /// excursion exceeds kExcursionBound, ascending.
   std::vector<int> rejectedFaces;
   bool acceptable() const { return rejectedFaces.empty(); }
 };
 
 /// Cost: n·resolution² second-order evaluations per n-sided face (exact for
-/// gregory-g2, 9 first-order evaluations otherwise), plus the boundary samples.
+/// gregory-g2, 9 first-order evaluations otherwise), plus the boundary
+/// samples, the corner grids and a tessellation at 16 intervals per segment
+/// (at 32 too where faces cross at 16).
 ShapeReport measureShape(const Surface &surface, const ShapeOptions &options = {});
 
 } // namespace v1

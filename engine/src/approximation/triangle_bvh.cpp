@@ -131,5 +131,81 @@ TriangleBvh::Hit TriangleBvh::closest(const Vec3 &p) const {
   return best;
 }
 
+bool TriangleBvh::overlap(const Vec3 &loA, const Vec3 &hiA, const Vec3 &loB, const Vec3 &hiB) {
+  return loA.x <= hiB.x && loB.x <= hiA.x && loA.y <= hiB.y && loB.y <= hiA.y && loA.z <= hiB.z && loB.z <= hiA.z;
+}
+
+void TriangleBvh::triangleBox(int t, Vec3 &lo, Vec3 &hi) const {
+  const auto &tri = triangles_[static_cast<std::size_t>(t)];
+  lo = minimum(minimum(positions_[tri[0]], positions_[tri[1]]), positions_[tri[2]]);
+  hi = maximum(maximum(positions_[tri[0]], positions_[tri[1]]), positions_[tri[2]]);
+}
+
+void TriangleBvh::forEachOverlappingPair(const std::function<void(int a, int b)> &visit) const {
+  if (nodes_.empty()) return;
+  auto visitIfBoxesOverlap = [&](int a, int b) {
+    Vec3 loA, hiA, loB, hiB;
+    triangleBox(a, loA, hiA), triangleBox(b, loB, hiB);
+    if (overlap(loA, hiA, loB, hiB)) visit(std::min(a, b), std::max(a, b));
+  };
+  auto volume = [](const Node &n) { return (n.hi.x - n.lo.x) * (n.hi.y - n.lo.y) * (n.hi.z - n.lo.z); };
+  // Pairs of nodes whose triangles may overlap; (k, k) stands for the pairs
+  // within node k.
+  std::vector<std::pair<int, int>> stack{{0, 0}};
+  while (!stack.empty()) {
+    const auto [a, b] = stack.back();
+    stack.pop_back();
+    const Node &na = nodes_[a], &nb = nodes_[b];
+    if (a == b) {
+      if (na.count > 0) {
+        for (int i = na.first; i < na.first + na.count; ++i)
+          for (int j = i + 1; j < na.first + na.count; ++j) visitIfBoxesOverlap(order_[i], order_[j]);
+      } else {
+        stack.push_back({na.first, na.first}), stack.push_back({na.first + 1, na.first + 1});
+        stack.push_back({na.first, na.first + 1});
+      }
+      continue;
+    }
+    if (!overlap(na.lo, na.hi, nb.lo, nb.hi)) continue;
+    if (na.count > 0 && nb.count > 0) {
+      for (int i = na.first; i < na.first + na.count; ++i)
+        for (int j = nb.first; j < nb.first + nb.count; ++j) visitIfBoxesOverlap(order_[i], order_[j]);
+    } else if (nb.count > 0 || (na.count == 0 && volume(na) >= volume(nb))) {
+      stack.push_back({na.first, b}), stack.push_back({na.first + 1, b});
+    } else {
+      stack.push_back({a, nb.first}), stack.push_back({a, nb.first + 1});
+    }
+  }
+}
+
+namespace {
+/// Where segment p → q passes through the interior of triangle t (both ends
+/// of the segment excluded), by Möller–Trumbore.
+std::optional<Vec3> segmentThroughTriangle(const Vec3 &p, const Vec3 &q, const std::array<Vec3, 3> &t) {
+  const Vec3 e1 = t[1] - t[0], e2 = t[2] - t[0], d = q - p;
+  const Vec3 h = cross(d, e2);
+  const double det = dot(e1, h);
+  if (!(std::abs(det) > 0)) return std::nullopt; // parallel to the plane (or not finite)
+  const double inv = 1 / det;
+  const Vec3 s = p - t[0];
+  const double u = inv * dot(s, h);
+  if (!(u > 0 && u < 1)) return std::nullopt;
+  const Vec3 r = cross(s, e1);
+  const double v = inv * dot(d, r);
+  if (!(v > 0 && u + v < 1)) return std::nullopt;
+  const double along = inv * dot(e2, r);
+  if (!(along > 0 && along < 1)) return std::nullopt;
+  return p + d * along;
+}
+} // namespace
+
+std::optional<Vec3> trianglesCross(const std::array<Vec3, 3> &a, const std::array<Vec3, 3> &b) {
+  for (int k = 0; k < 3; ++k) {
+    if (auto x = segmentThroughTriangle(a[k], a[(k + 1) % 3], b)) return x;
+    if (auto x = segmentThroughTriangle(b[k], b[(k + 1) % 3], a)) return x;
+  }
+  return std::nullopt;
+}
+
 } // namespace v1
 } // namespace curvenet

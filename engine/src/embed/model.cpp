@@ -419,14 +419,20 @@ Result<ShapeReport> Model::shape(const ShapeOptions &options) const {
         if (surface(g) == owner) merged.faces[static_cast<std::size_t>(g)] = part.faces[static_cast<std::size_t>(g)];
       for (const CornerFold &fold : part.cornerFolds)
         if (surface(fold.face) == owner) merged.cornerFolds.push_back(fold);
+      for (const FaceIntersection &x : part.intersections)
+        if (surface(x.faceA) == owner && surface(x.faceB) == owner) merged.intersections.push_back(x);
     }
+    std::sort(merged.intersections.begin(), merged.intersections.end(),
+              [](const FaceIntersection &a, const FaceIntersection &b) {
+                return std::pair(a.faceA, a.faceB) < std::pair(b.faceA, b.faceB);
+              });
     std::sort(merged.cornerFolds.begin(), merged.cornerFolds.end(), [](const CornerFold &a, const CornerFold &b) {
       return std::pair(a.face, a.corner) < std::pair(b.face, b.corner);
     });
     double weighted = 0, area = 0;
     for (const FaceShape &face : merged.faces) {
       if (face.folded) merged.foldedFaces.push_back(face.face);
-      if (face.folded || face.foldsAtCorner || !(face.excursion <= kExcursionBound))
+      if (face.folded || face.foldsAtCorner || face.intersects || !(face.excursion <= kExcursionBound))
         merged.rejectedFaces.push_back(face.face);
       if (merged.worstExcursionFace < 0 || face.excursion > merged.maxExcursion)
         merged.maxExcursion = face.excursion, merged.worstExcursionFace = face.face;

@@ -3,9 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <vector>
 
+#include "approximation/triangle_bvh.hpp"
 #include "curvenet/error.hpp"
+#include "curvenet/tessellate.hpp"
 #include "patches/corner_grid.hpp"
 
 namespace curvenet {
@@ -115,18 +118,61 @@ std::vector<CornerFold> cornerFolds(const Surface &surface, int f) {
   return folds;
 }
 
+/// Pairs of faces (a ≤ b) whose tessellation at `resolution` intervals per
+/// segment has crossing triangles that share no vertex, with a point where
+/// they cross.
+std::map<std::pair<int, int>, Vec3> crossingFaces(const Surface &surface, int resolution) {
+  TessellationOptions options;
+  options.resolution = resolution;
+  const Mesh mesh = tessellate(surface, options);
+  std::vector<int> faceOf(mesh.triangles.size());
+  for (std::size_t f = 0; f + 1 < mesh.faceTriangleStart.size(); ++f)
+    std::fill(faceOf.begin() + mesh.faceTriangleStart[f], faceOf.begin() + mesh.faceTriangleStart[f + 1],
+              static_cast<int>(f));
+  std::map<std::pair<int, int>, Vec3> crossings;
+  const TriangleBvh bvh(mesh.positions, mesh.triangles);
+  bvh.forEachOverlappingPair([&](int s, int t) {
+    const auto &a = mesh.triangles[static_cast<std::size_t>(s)], &b = mesh.triangles[static_cast<std::size_t>(t)];
+    for (const std::uint32_t v : a)
+      if (v == b[0] || v == b[1] || v == b[2]) return;
+    const std::pair faces = std::minmax(faceOf[static_cast<std::size_t>(s)], faceOf[static_cast<std::size_t>(t)]);
+    if (crossings.count(faces)) return;
+    auto corners = [&](const std::array<std::uint32_t, 3> &tri) {
+      return std::array<Vec3, 3>{mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]};
+    };
+    if (const std::optional<Vec3> x = trianglesCross(corners(a), corners(b))) crossings.emplace(faces, *x);
+  });
+  return crossings;
+}
+
+/// Faces passing through each other (shape.hpp, intersections): pairs found
+/// at 16 intervals per segment and again at 32.
+std::vector<FaceIntersection> faceIntersections(const Surface &surface) {
+  std::vector<FaceIntersection> found;
+  const std::map<std::pair<int, int>, Vec3> coarse = crossingFaces(surface, 16);
+  if (coarse.empty()) return found;
+  for (const auto &[faces, point] : crossingFaces(surface, 32))
+    if (coarse.count(faces)) found.push_back({faces.first, faces.second, point});
+  return found;
+}
+
 } // namespace
 
 ShapeReport measureShape(const Surface &surface, const ShapeOptions &options) {
   if (options.resolution < 1) throw InputError("", "shape resolution", "must be at least 1");
   ShapeReport report;
   report.foldedFaces = surface.foldedFaces();
+  report.intersections = faceIntersections(surface);
+  std::vector<char> intersects(static_cast<std::size_t>(surface.faceCount()), 0);
+  for (const FaceIntersection &x : report.intersections)
+    intersects[static_cast<std::size_t>(x.faceA)] = intersects[static_cast<std::size_t>(x.faceB)] = 1;
   double weighted = 0, totalArea = 0;
   for (int f = 0; f < surface.faceCount(); ++f) {
     FaceShape face = measureFace(surface, f, options.resolution);
     face.folded = std::find(report.foldedFaces.begin(), report.foldedFaces.end(), f) != report.foldedFaces.end();
     const std::vector<CornerFold> corners = cornerFolds(surface, f);
     face.foldsAtCorner = !corners.empty();
+    face.intersects = intersects[static_cast<std::size_t>(f)];
     report.cornerFolds.insert(report.cornerFolds.end(), corners.begin(), corners.end());
     if (face.excursion > report.maxExcursion || report.worstExcursionFace < 0)
       report.maxExcursion = face.excursion, report.worstExcursionFace = f;
@@ -134,7 +180,8 @@ ShapeReport measureShape(const Surface &surface, const ShapeOptions &options) {
       report.maxFairness = face.fairness, report.worstFairnessFace = f;
     weighted += face.fairness * face.area;
     totalArea += face.area;
-    if (face.folded || face.foldsAtCorner || !(face.excursion <= kExcursionBound)) report.rejectedFaces.push_back(f);
+    if (face.folded || face.foldsAtCorner || face.intersects || !(face.excursion <= kExcursionBound))
+      report.rejectedFaces.push_back(f);
     report.faces.push_back(face);
   }
   report.fairness = totalArea > 0 ? weighted / totalArea : 0.0;
