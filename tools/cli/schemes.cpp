@@ -30,7 +30,7 @@ void addCurvesOption(CLI::App *sub, std::string &curves) {
 
 void addStrictFlag(CLI::App *sub, bool &strict) {
   sub->add_flag("--strict", strict,
-                "fail (exit 1, writing nothing) when a face folds or its excursion exceeds " +
+                "fail (exit 1, writing nothing) when a face folds, passes through a face or its excursion exceeds " +
                     std::to_string(int(kExcursionBound * 100)) + "% of the diagonal");
 }
 
