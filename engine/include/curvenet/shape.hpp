@@ -16,10 +16,13 @@
 //    itself, without folding in its own parameters (a G² patch curling over
 //    its neighbour along a thin tube: doghead.obj, bathtub.obj): the
 //    surface's tessellations at 16 and at 32 intervals per segment are
-//    searched for triangles that cross, triangles sharing a mesh vertex
-//    left out; a pair of faces counts when both resolutions find it (the
-//    chords of a coarse mesh can cross where the surface does not, and
-//    those go as the resolution grows);
+//    searched for triangles of different faces that cross, triangles
+//    sharing a mesh vertex left out; a pair of faces counts when both
+//    resolutions find it (the chords of a coarse mesh can cross where the
+//    surface does not, and those go as the resolution grows). A
+//    transfinite face through itself as its build found it on its own
+//    lattice (docs/surfaces.md, Intersections), which then sought a variant
+//    that does not;
 //  * excursion — how far the patch leaves the box of its boundary: the
 //    growth of the bounding-box diagonal when the samples are added to the
 //    box of the face's boundary curves (sampled at 8·resolution points per

@@ -143,10 +143,12 @@ void TriangleBvh::triangleBox(int t, Vec3 &lo, Vec3 &hi) const {
 
 void TriangleBvh::forEachOverlappingPair(const std::function<void(int a, int b)> &visit) const {
   if (nodes_.empty()) return;
+  std::vector<Vec3> lo(triangles_.size()), hi(triangles_.size());
+  for (std::size_t t = 0; t < triangles_.size(); ++t) triangleBox(static_cast<int>(t), lo[t], hi[t]);
   auto visitIfBoxesOverlap = [&](int a, int b) {
-    Vec3 loA, hiA, loB, hiB;
-    triangleBox(a, loA, hiA), triangleBox(b, loB, hiB);
-    if (overlap(loA, hiA, loB, hiB)) visit(std::min(a, b), std::max(a, b));
+    if (overlap(lo[static_cast<std::size_t>(a)], hi[static_cast<std::size_t>(a)], lo[static_cast<std::size_t>(b)],
+                hi[static_cast<std::size_t>(b)]))
+      visit(std::min(a, b), std::max(a, b));
   };
   auto volume = [](const Node &n) { return (n.hi.x - n.lo.x) * (n.hi.y - n.lo.y) * (n.hi.z - n.lo.z); };
   // Pairs of nodes whose triangles may overlap; (k, k) stands for the pairs

@@ -42,6 +42,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "bezier/quintic.hpp"
@@ -110,6 +111,9 @@ struct SurfaceAccess {
   static const bezier::BezierSurfaceData *bezierData(const Surface &surface);
   /// The transfinite patch of a face (nullptr for the Bézier schemes).
   static const Patch *patch(const Surface &surface, int face);
+  /// Where that patch passes through itself (patchSelfCrossing, found when
+  /// it was built; world coordinates); nullopt for the Bézier schemes.
+  static std::optional<Vec3> selfCrossing(const Surface &surface, int face);
   /// The same patch and a segment's fence, shared (a gregory-g2 surface
   /// keeping its master faces' G¹ patches holds those of its G¹ surface).
   static std::shared_ptr<const Patch> sharedPatch(const Surface &surface, int face);

@@ -12,7 +12,6 @@ inline namespace v1 {
 
 namespace {
 
-constexpr int kMaxSides = 8;
 
 /// Linear ribbon R(s, d) = P(s) + d T(s) at Dual parameters, from its jet at s.
 DualVec3 ribbonAt(const RibbonJet &j, Dual s, Dual d) {
@@ -327,7 +326,7 @@ Patch::Patch(std::vector<LinearRibbon> ribbons, const SurfaceOptions &options, s
              std::vector<double> blendShares)
     : tables_(std::make_shared<TableCache>()), domain_(static_cast<int>(ribbons.size())), ribbons_(std::move(ribbons)), parabolic_(std::move(parabolic)),
       options_(options) {
-  CURVENET_CHECK(ribbons_.size() >= 3 && ribbons_.size() <= kMaxSides);
+  CURVENET_CHECK(ribbons_.size() >= 3 && ribbons_.size() <= Patch::kMaxSides);
   if (options_.sweepline == Sweepline::Auto)
     options_.sweepline = options_.scheme == Scheme::GregoryG2 ? Sweepline::Hermite : Sweepline::Radial;
   CURVENET_CHECK(options_.scheme != Scheme::GregoryG2 || parabolic_.size() == ribbons_.size(),
@@ -399,8 +398,8 @@ DualVec3 Patch::evaluate(double u, double v) const {
 // Gregory corner-based patch, [SV14] eqs. 16–18 with m = 2.
 DualVec3 Patch::gregory(Dual u, Dual v) const {
   const int n = domain_.sides();
-  std::array<Dual, kMaxSides> s, distance;
-  std::array<RibbonJet, kMaxSides> jet;
+  std::array<Dual, Patch::kMaxSides> s, distance;
+  std::array<RibbonJet, Patch::kMaxSides> jet;
   if (options_.sweepline != Sweepline::Radial)
     domain_.hermiteSweepSides(u, v, options_.sweepline == Sweepline::QuinticHermite, s);
   // With a share of the two-ribbon blend, λ = t² / (s² + t²) turns with the
@@ -419,7 +418,7 @@ DualVec3 Patch::gregory(Dual u, Dual v) const {
   }
   // Corner blends in product form (safe on the sides):
   // B_{i,i−1} = ∏_{j∉{i,i−1}} Δ_j² / Σ_k ∏_{j∉{k,k−1}} Δ_j².
-  std::array<Dual, kMaxSides> squared, blend;
+  std::array<Dual, Patch::kMaxSides> squared, blend;
   for (int i = 0; i < n; ++i) squared[i] = distance[i] * distance[i];
   const Dual total = domain_.cornerProducts(squared, blend);
   DualVec3 result{};
@@ -448,8 +447,8 @@ Dual2Vec3 Patch::evaluateSecondOrder(double uValue, double vValue) const {
   const Dual2 u = Dual2::u(uValue), v = Dual2::vCoord(vValue);
   const int n = domain_.sides();
   const bool quintic = options_.sweepline == Sweepline::QuinticHermite;
-  std::array<Dual2, kMaxSides> s, cubed;
-  std::array<SideEndData, kMaxSides> jet;
+  std::array<Dual2, Patch::kMaxSides> s, cubed;
+  std::array<SideEndData, Patch::kMaxSides> jet;
   for (int i = 0; i < n; ++i) {
     // On a side the two neighbouring sides' sweeps are 0 and 1 exactly, but
     // a point computed on it (corner + x · edge) and its root miss them by
@@ -467,7 +466,7 @@ Dual2Vec3 Patch::evaluateSecondOrder(double uValue, double vValue) const {
     const double side = ribbons_[i].snap(std::clamp(s[i].v, 0.0, 1.0));
     jet[i] = side == 0.0 ? parabolic_[i].start() : side == 1.0 ? parabolic_[i].end() : parabolic_[i].secondOrder(side);
   }
-  std::array<Dual2, kMaxSides> blend;
+  std::array<Dual2, Patch::kMaxSides> blend;
   const Dual2 total = domain_.cornerProducts(cubed, blend);
   Dual2Vec3 result{};
   for (int i = 0; i < n; ++i) {
@@ -493,8 +492,8 @@ Dual2Vec3 Patch::evaluateSecondOrder(double uValue, double vValue) const {
 DualVec3 Patch::gregoryG2(Dual u, Dual v) const {
   const int n = domain_.sides();
   const bool quintic = options_.sweepline == Sweepline::QuinticHermite;
-  std::array<Dual, kMaxSides> s, cubed;
-  std::array<ParabolicJet, kMaxSides> jet;
+  std::array<Dual, Patch::kMaxSides> s, cubed;
+  std::array<ParabolicJet, Patch::kMaxSides> jet;
   domain_.hermiteSweepSides(u, v, quintic, s);
   for (int i = 0; i < n; ++i) {
     const Dual distance = domain_.perpendicularDistance(i, u, v);
@@ -503,7 +502,7 @@ DualVec3 Patch::gregoryG2(Dual u, Dual v) const {
   }
   // Corner blends in product form with m = 3 (eq. 18): their first and second
   // derivatives vanish on every side but the two at the corner.
-  std::array<Dual, kMaxSides> blend;
+  std::array<Dual, Patch::kMaxSides> blend;
   const Dual total = domain_.cornerProducts(cubed, blend);
   for (int i = 0; i < n; ++i) blend[i] = blend[i] / total;
   return gregoryG2From(s.data(), blend.data(), jet.data());
@@ -543,14 +542,14 @@ void Patch::compositeParameters(Dual u, Dual v, Dual *s, Dual *d, Dual *blend) c
   domain_.wachspressDistances(u, v, std::span<Dual>(d, static_cast<std::size_t>(n)));
   for (int i = 0; i < n; ++i) s[i] = domain_.linearSweepSideParameter(i, u, v);
   // CR blends B_i = (D_{i,i−1} + D_{i,i+1}) / Σ_j D_{j,j−1}, D = ∏ d_j² over the others.
-  std::array<Dual, kMaxSides> squared, cornerProduct;
+  std::array<Dual, Patch::kMaxSides> squared, cornerProduct;
   for (int i = 0; i < n; ++i) squared[i] = d[i] * d[i];
   const Dual total = domain_.cornerProducts(squared, cornerProduct); // cornerProduct[i] = D_{i,i−1}
   for (int i = 0; i < n; ++i) blend[i] = (cornerProduct[i] + cornerProduct[domain_.wrap(i + 1)]) / total;
 }
 
 DualVec3 Patch::compositeRibbon(Dual u, Dual v) const {
-  std::array<Dual, kMaxSides> s, d, blend; // stack arrays: no allocation per point
+  std::array<Dual, Patch::kMaxSides> s, d, blend; // stack arrays: no allocation per point
   compositeParameters(u, v, s.data(), d.data(), blend.data());
   return compositeRibbonFrom(s.data(), d.data(), blend.data());
 }

@@ -74,6 +74,10 @@ kernels::GregoryCorner kernelCorner(const CornerData &c);
 
 class Patch {
 public:
+  /// The most sides a patch has (Network refuses longer loops; connection
+  /// curves split them): the evaluation's per-side arrays live on the stack.
+  static constexpr int kMaxSides = 8;
+
   /// `parabolic` (one per side, over the same linear ribbons) is required by
   /// gregory-g2 and ignored by the other schemes.
   /// Gregory schemes: `blendShares` (one per corner, see cornerBlendShares)

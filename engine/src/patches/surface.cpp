@@ -17,6 +17,7 @@
 #include "curvenet/error.hpp"
 #include "curvenet/surface.hpp"
 #include "patches/corner_grid.hpp"
+#include "patches/crossing.hpp"
 #include "patches/patch.hpp"
 #include "patches/surface_impl.hpp"
 #include "plans/face_errors.hpp"
@@ -170,6 +171,12 @@ const bezier::BezierSurfaceData *SurfaceAccess::bezierData(const Surface &surfac
 
 const Patch *SurfaceAccess::patch(const Surface &surface, int face) {
   return surface.impl_->bezier ? nullptr : surface.impl_->patches.at(face).get();
+}
+
+std::optional<Vec3> SurfaceAccess::selfCrossing(const Surface &surface, int face) {
+  const std::vector<std::optional<Vec3>> &crossings = surface.impl_->selfCrossings;
+  if (surface.impl_->bezier || !crossings.at(face)) return std::nullopt;
+  return *crossings[face] + surface.impl_->origin;
 }
 
 std::shared_ptr<const Patch> SurfaceAccess::sharedPatch(const Surface &surface, int face) {
@@ -462,6 +469,7 @@ struct FaceBuild {
   std::shared_ptr<const Patch> patch;
   std::vector<Impl::DomainSide> sides;
   bool folded = false;
+  std::optional<Vec3> selfCrossing; ///< patchSelfCrossing of `patch`
 };
 
 /// The fence face f sees along segment e.
@@ -487,7 +495,8 @@ const NormalFence *fenceOf(const Impl &impl, int e, int f) {
 /// the corner. A variant is taken when `accepts` it and it folds neither on
 /// the fold grid nor on one of kFineFoldRows rows (box.obj's triangles with
 /// the blend pass the first and fold near their centre on the second; at
-/// 3/4 length they pass both) nor at a corner; failing that, when the patch
+/// 3/4 length they pass both) nor at a corner, and does not pass through
+/// itself (patchSelfCrossing); failing that, when the patch
 /// folds on the fold grid (`foldsInside`), the first variant that passes
 /// the fold grid; else null.
 /// Three times the fold grid, below Patch::kTableResolution: no ribbon
@@ -513,7 +522,8 @@ std::shared_ptr<const Patch> unfoldedVariant(const Patch &patch, bool foldsInsid
       continue;
     std::shared_ptr<const Patch> candidate = build(scale, shares);
     if (folds(*candidate, kFoldRows) || !accepts(*candidate)) continue;
-    if (!folds(*candidate, kFineFoldRows) && foldedCorners(*candidate).empty()) return candidate;
+    if (!folds(*candidate, kFineFoldRows) && foldedCorners(*candidate).empty() && !patchSelfCrossing(*candidate))
+      return candidate;
     if (!coarse && foldsInside) coarse = std::move(candidate);
   }
   return coarse;
@@ -529,6 +539,7 @@ FaceBuild buildFace(const Impl &impl, int f) {
     result.patch = SurfaceAccess::sharedPatch(g1, f);
     for (int i = 0; i < g1.domainSides(f); ++i) result.sides.push_back(g1.domainSideRange(f, i));
     result.folded = std::binary_search(g1.foldedFaces().begin(), g1.foldedFaces().end(), f);
+    if (const std::optional<Vec3> x = SurfaceAccess::selfCrossing(g1, f)) result.selfCrossing = *x - g1.origin();
     return result;
   }
   std::vector<Impl::DomainSide> &sides = result.sides;
@@ -652,14 +663,17 @@ FaceBuild buildFace(const Impl &impl, int f) {
   // folds: on the public sketches eq. 17's corner interpolant turned the
   // normal over within 2e-3 of the diagonal of corners whose two curves
   // leave in nearly one direction, the blend at none), then with uniform
-  // shares and shorter cross-derivatives.
+  // shares and shorter cross-derivatives. So is a face that passes through
+  // itself without folding.
   const std::vector<int> foldingCorners = foldedCorners(*result.patch);
-  if (result.folded || !foldingCorners.empty()) {
+  result.selfCrossing = patchSelfCrossing(*result.patch);
+  if (result.folded || !foldingCorners.empty() || result.selfCrossing) {
     auto build = [&](double scale, const std::vector<double> &shares) { return withShares(shares, scale); };
     if (std::shared_ptr<const Patch> unfolded =
             unfoldedVariant(*result.patch, result.folded, foldingCorners, build, accepts, folds)) {
       result.patch = std::move(unfolded);
       result.folded = false;
+      result.selfCrossing = patchSelfCrossing(*result.patch);
     }
   }
   return result;
@@ -692,7 +706,9 @@ void buildFaces(Impl &impl, std::span<const int> faces) {
   forEachItem(faces.size(), [&](std::size_t k) { built[k] = buildFace(impl, faces[k]); });
   std::vector<char> folded(count, 0);
   for (int f : impl.folded) folded[f] = 1;
+  impl.selfCrossings.resize(count);
   for (std::size_t k = 0; k < faces.size(); ++k) {
+    impl.selfCrossings[faces[k]] = built[k].selfCrossing;
     impl.patches[faces[k]] = std::move(built[k].patch);
     impl.domainSides[faces[k]] = std::move(built[k].sides);
     folded[faces[k]] = built[k].folded;

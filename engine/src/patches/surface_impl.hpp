@@ -2,6 +2,8 @@
 // surface stage: surface.cpp builds it, surface_evaluate.cpp evaluates it.
 #pragma once
 
+#include <optional>
+
 #include <memory>
 #include <vector>
 
@@ -19,6 +21,9 @@ struct Surface::Impl {
   /// (zero unless the network lies far from the origin, see Surface::origin).
   Vec3 origin;
   std::vector<int> folded; ///< faces whose patch folds over itself (see patchFolds)
+  /// Per face, where its patch passes through itself (patchSelfCrossing,
+  /// in the patches' own coordinates); empty for the Bézier schemes.
+  std::vector<std::optional<Vec3>> selfCrossings;
   Network network;
   SurfaceOptions options;
   bool referenceFences = false; ///< fence normals from the network's reference surface

@@ -63,7 +63,6 @@ struct JetArrays {
   Vec3Array P, dP, T, dT, C, dC;
 };
 
-constexpr int kMaxSides = 8;
 constexpr int kMaxCornerVectors = 17; // a00 and the eight (a, b) pairs of eq. 22
 // Samples per pass of the position path: their ribbon values (up to 10
 // arrays per side: 51 KB for a G² pentagon) stay in the cache between the
@@ -82,7 +81,7 @@ constexpr std::size_t kJetBlock = 64;
 /// quantities q (the plan's blends), through value(i, k, which).
 template <class T> struct CompositeInputs {
   std::vector<T> storage;
-  std::array<T *, kMaxSides> s{}, d{}, b{};
+  std::array<T *, Patch::kMaxSides> s{}, d{}, b{};
   template <class Value> void fill(int n, std::size_t count, const Value &value) {
     storage.resize(3 * static_cast<std::size_t>(n) * count);
     for (int i = 0; i < n; ++i)
@@ -99,7 +98,7 @@ template <class T> struct CompositeInputs {
   }
   /// f(k, s, d, b) with every side's values at sample k, for each sample.
   template <class F> void eachSample(int n, std::size_t count, const F &f) const {
-    std::array<T, kMaxSides> sk, dk, bk;
+    std::array<T, Patch::kMaxSides> sk, dk, bk;
     for (std::size_t k = 0; k < count; ++k) {
       for (int i = 0; i < n; ++i) sk[i] = s[i][k], dk[i] = d[i][k], bk[i] = b[i][k];
       f(k, sk.data(), dk.data(), bk.data());
@@ -128,10 +127,10 @@ void forCompositeRibbonChunks(int n, std::size_t count, const double *u, const d
   for (std::size_t first = 0; first < count; first += kChunk) {
     const std::size_t m = std::min(kChunk, count - first);
     columns.resize(3 * static_cast<std::size_t>(n) * m);
-    std::array<const T *, kMaxSides> side, distance, blend;
+    std::array<const T *, Patch::kMaxSides> side, distance, blend;
     auto column = [&](int which, int i) { return columns.data() + (static_cast<std::size_t>(which) * n + i) * m; };
     for (std::size_t k = 0; k < m; ++k) {
-      std::array<Dual, kMaxSides> sk, dk, bk;
+      std::array<Dual, Patch::kMaxSides> sk, dk, bk;
       parameters(u[first + k], v[first + k], sk.data(), dk.data(), bk.data());
       for (int i = 0; i < n; ++i)
         column(0, i)[k] = columnValue<T>(sk[i]), column(1, i)[k] = columnValue<T>(dk[i]),
@@ -358,7 +357,7 @@ void Patch::evaluatePlannedPositions(const EvaluationPlan &plan, std::size_t fir
   // corner 0's blends) at its rotated run. The tessellator's tiles lie
   // within runs and come in rotation groups, so a group reads one stretch of
   // the plan n times from the cache.
-  std::array<const double *, kMaxSides> side, blend;
+  std::array<const double *, Patch::kMaxSides> side, blend;
   for (std::size_t k = first; k < first + count;) {
     const std::size_t m = std::min(plan.rotationRun(k), first + count - k);
     for (int i = 0; i < n; ++i) side[i] = plan.sideValuesFrom(i, k), blend[i] = plan.blendValuesFrom(i, k);
@@ -385,7 +384,7 @@ void forEachGroupBlockWithSharedWeights(const EvaluationPlan &plan, const Evalua
   thread_local kernels::AlignedVector<double> weights;
   weights.resize(static_cast<std::size_t>(members) * rows * stride);
   auto memberWeights = [&](int m) { return weights.data() + static_cast<std::size_t>(m) * rows * stride; };
-  std::array<const double *, kMaxSides> cornerWeights;
+  std::array<const double *, Patch::kMaxSides> cornerWeights;
   for (std::size_t offset = 0; offset < group.count; offset += block) {
     const std::size_t count = std::min(block, group.count - offset);
     auto start = [&](int m) { return group.first + m * group.stride + offset; };
@@ -426,7 +425,7 @@ void Patch::evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPla
         kernels::gregoryCornerWeights(count, s, sPrevious, into, stride);
       },
       [&](int m, std::size_t offset, std::size_t count, const double *const *cornerWeights, std::size_t stride) {
-        std::array<const double *, kMaxSides> side, blend;
+        std::array<const double *, Patch::kMaxSides> side, blend;
         for (int i = 0; i < domain_.sides(); ++i) {
           const std::size_t from = group.first + group.source(m, i) * group.stride + offset;
           side[i] = plan.sideValuesFrom(0, from), blend[i] = plan.blendValuesFrom(0, from);
@@ -480,7 +479,7 @@ void Patch::gregoryPositionsFrom(std::size_t count, const double *const *sideVal
                                  std::size_t weightStride) const {
   const int n = domain_.sides();
   if (count > kPositionBlock) {
-    std::array<const double *, kMaxSides> side, blend, weights;
+    std::array<const double *, Patch::kMaxSides> side, blend, weights;
     for (std::size_t first = 0; first < count; first += kPositionBlock) {
       for (int i = 0; i < n; ++i) {
         side[i] = sideValues[i] + first, blend[i] = blendValues[i] + first;
@@ -582,7 +581,7 @@ void Patch::evaluatePositions(std::size_t count, const double *u, const double *
     scratch.data.resize(static_cast<std::size_t>(4 * n + 1) * m);
     // Per side: its parameter, its frame coordinates (y the perpendicular
     // distance Δ_i of the blends) and its corner blend.
-    std::array<double *, kMaxSides> side, x, y, blend;
+    std::array<double *, Patch::kMaxSides> side, x, y, blend;
     for (int i = 0; i < n; ++i)
       side[i] = scratch.at(i), x[i] = scratch.at(n + i), y[i] = scratch.at(2 * n + i), blend[i] = scratch.at(3 * n + i);
     kernels::sideFrames(m, sides, u + first, v + first, x.data(), y.data());
@@ -678,7 +677,7 @@ void Patch::gregoryJetsFrom(std::size_t count, const SideBlendSource &source, bo
     const std::size_t m = std::min(kJetBlock, count - first);
     scratch.reset(m, static_cast<std::size_t>(n) * (6 + jetArrays) + 10);
     kernels::GregoryJetSamples in;
-    std::array<JetArrays, kMaxSides> jets;
+    std::array<JetArrays, Patch::kMaxSides> jets;
     for (int i = 0; i < n; ++i) {
       DualArray sideBuffer, blendBuffer; // for a source that writes its arrays
       sideBuffer.take(scratch), blendBuffer.take(scratch);
@@ -827,7 +826,7 @@ void Patch::evaluateBatch(std::size_t count, const double *u, const double *v, D
   // Corner blends in product form (m = 2 for G¹, 3 for G²), as Patch::evaluate.
   for (std::size_t k = 0; k < count; ++k) {
     const Dual du = Dual::u(u[k]), dv = Dual::vCoord(v[k]);
-    std::array<Dual, kMaxSides> power, product;
+    std::array<Dual, Patch::kMaxSides> power, product;
     for (int j = 0; j < n; ++j) {
       const Dual distance = domain_.perpendicularDistance(j, du, dv);
       power[j] = g2 ? distance * distance * distance : distance * distance;
@@ -877,14 +876,14 @@ void Patch::evaluateJets(std::size_t count, const double *u, const double *v, Du
       snapToCorner(columns.x()[k], columns.y()[k]);
     }
     if (pointwiseSweeps) {
-      std::array<Dual, kMaxSides> s;
+      std::array<Dual, Patch::kMaxSides> s;
       for (std::size_t k = 0; k < m; ++k) {
         domain_.hermiteSweepSides(Dual::u(columns.x()[k]), Dual::vCoord(columns.y()[k]), quintic, s);
         for (int i = 0; i < n; ++i)
           columns.side(i, 0)[k] = s[i].v, columns.side(i, 1)[k] = s[i].du, columns.side(i, 2)[k] = s[i].dv;
       }
     }
-    std::array<double *, kMaxSides> fx, fy, blend[3];
+    std::array<double *, Patch::kMaxSides> fx, fy, blend[3];
     for (int i = 0; i < n; ++i) {
       fx[i] = columns.fx(i), fy[i] = columns.fy(i);
       for (int c = 0; c < 3; ++c) blend[c][i] = columns.blend(i, c);
@@ -896,7 +895,7 @@ void Patch::evaluateJets(std::size_t count, const double *u, const double *v, Du
         else cubicHermiteSweepJets(domain_, i, columns);
       }
       if (!radial) {
-        std::array<double *, kMaxSides> values;
+        std::array<double *, Patch::kMaxSides> values;
         for (int i = 0; i < n; ++i) values[i] = columns.side(i, 0);
         exactSweepEndsAtCorners(domain_, m, columns.x(), columns.y(), values.data());
       }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "approximation/triangle_bvh.hpp"
+#include "bezier/bezier_surface.hpp"
 #include "curvenet/error.hpp"
 #include "curvenet/tessellate.hpp"
 #include "patches/corner_grid.hpp"
@@ -120,7 +121,8 @@ std::vector<CornerFold> cornerFolds(const Surface &surface, int f) {
 
 /// Pairs of faces (a ≤ b) whose tessellation at `resolution` intervals per
 /// segment has crossing triangles that share no vertex, with a point where
-/// they cross.
+/// they cross. A face with a transfinite patch is not paired with itself:
+/// its own lattice decides that (faceIntersections).
 std::map<std::pair<int, int>, Vec3> crossingFaces(const Surface &surface, int resolution) {
   TessellationOptions options;
   options.resolution = resolution;
@@ -136,7 +138,7 @@ std::map<std::pair<int, int>, Vec3> crossingFaces(const Surface &surface, int re
     for (const std::uint32_t v : a)
       if (v == b[0] || v == b[1] || v == b[2]) return;
     const std::pair faces = std::minmax(faceOf[static_cast<std::size_t>(s)], faceOf[static_cast<std::size_t>(t)]);
-    if (crossings.count(faces)) return;
+    if (crossings.count(faces) || (faces.first == faces.second && SurfaceAccess::patch(surface, faces.first))) return;
     auto corners = [&](const std::array<std::uint32_t, 3> &tri) {
       return std::array<Vec3, 3>{mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]};
     };
@@ -145,15 +147,20 @@ std::map<std::pair<int, int>, Vec3> crossingFaces(const Surface &surface, int re
   return crossings;
 }
 
-/// Faces passing through each other (shape.hpp, intersections): pairs found
-/// at 16 intervals per segment and again at 32.
+/// Faces passing through each other or themselves (shape.hpp,
+/// intersections): pairs found at 16 intervals per segment and again at 32;
+/// a transfinite patch through itself on its own lattice, as the build found
+/// it (patchSelfCrossing).
 std::vector<FaceIntersection> faceIntersections(const Surface &surface) {
-  std::vector<FaceIntersection> found;
-  const std::map<std::pair<int, int>, Vec3> coarse = crossingFaces(surface, 16);
-  if (coarse.empty()) return found;
-  for (const auto &[faces, point] : crossingFaces(surface, 32))
-    if (coarse.count(faces)) found.push_back({faces.first, faces.second, point});
-  return found;
+  std::map<std::pair<int, int>, Vec3> found;
+  for (int f = 0; f < surface.faceCount(); ++f)
+    if (const std::optional<Vec3> x = SurfaceAccess::selfCrossing(surface, f)) found.emplace(std::pair(f, f), *x);
+  if (const std::map<std::pair<int, int>, Vec3> coarse = crossingFaces(surface, 16); !coarse.empty())
+    for (const auto &[faces, point] : crossingFaces(surface, 32))
+      if (coarse.count(faces)) found.emplace(faces, point);
+  std::vector<FaceIntersection> list;
+  for (const auto &[faces, point] : found) list.push_back({faces.first, faces.second, point});
+  return list;
 }
 
 } // namespace

@@ -1,0 +1,95 @@
+// Whether a patch passes through itself (patches/crossing.hpp).
+#include "patches/crossing.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "approximation/triangle_bvh.hpp"
+#include "patches/patch.hpp"
+
+namespace curvenet {
+inline namespace v1 {
+
+namespace {
+/// The fan lattice at `rows` rows: lattice point (k, i, j) = i/rows corner
+/// k + j/rows corner k+1 (the domain's centre is the origin); (k, 0, j) is
+/// (k + 1, j, 0) and the centre is one point.
+struct FanLattice {
+  std::vector<DualVec3> points; ///< with their derivatives
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+};
+
+FanLattice fanLattice(const Patch &patch, int rows) {
+  const RegularDomain &domain = patch.domain();
+  const int n = domain.sides();
+  const int perTriangle = rows * (rows + 1) / 2; // i ≥ 1, i + j ≤ rows
+  auto id = [&](int k, int i, int j) -> std::uint32_t {
+    if (i == 0 && j == 0) return 0;
+    if (i == 0) k = (k + 1) % n, i = j, j = 0;
+    // Rows i = 1 … rows hold rows − i + 1 points each.
+    const int before = (i - 1) * (rows + 1) - (i - 1) * i / 2;
+    return static_cast<std::uint32_t>(1 + k * perTriangle + before + j);
+  };
+  std::vector<double> us(static_cast<std::size_t>(1 + n * perTriangle)), vs(us.size());
+  for (int k = 0; k < n; ++k)
+    for (int i = 1; i <= rows; ++i)
+      for (int j = 0; i + j <= rows; ++j) {
+        const Vec2 uv = domain.corner(k) * (double(i) / rows) + domain.corner(k + 1) * (double(j) / rows);
+        us[id(k, i, j)] = uv.x, vs[id(k, i, j)] = uv.y;
+      }
+  FanLattice lattice;
+  lattice.points.resize(us.size());
+  patch.evaluateBatch(us.size(), us.data(), vs.data(), lattice.points.data());
+  for (int k = 0; k < n; ++k)
+    for (int i = 0; i < rows; ++i)
+      for (int j = 0; i + j < rows; ++j) {
+        lattice.triangles.push_back({id(k, i, j), id(k, i + 1, j), id(k, i, j + 1)});
+        if (i + j + 1 < rows) lattice.triangles.push_back({id(k, i + 1, j), id(k, i + 1, j + 1), id(k, i, j + 1)});
+      }
+  return lattice;
+}
+
+/// True when every normal du × dv of the lattice points into the half-space
+/// of their sum: the patch is then one-sheeted over the plane normal to it
+/// (its projection there a local diffeomorphism), and no search is needed.
+bool normalsInOneHalfSpace(const FanLattice &lattice) {
+  Vec3 sum{0, 0, 0};
+  for (const DualVec3 &p : lattice.points) sum += normalized(cross(p.du, p.dv));
+  return std::all_of(lattice.points.begin(), lattice.points.end(),
+                     [&](const DualVec3 &p) { return dot(cross(p.du, p.dv), sum) > 0; });
+}
+
+/// Where two triangles of the lattice that share no lattice point cross
+/// (trianglesCross); nullopt when none do. A patch can pass through itself
+/// without folding in its parameters — its normal turning gradually over a
+/// third of the face, so no two neighbouring samples of the fold grid
+/// disagree by 90° (sewing_machine.obj's nearly flat face 36 under
+/// gregory-g1 crossed itself in the middle of one centre–side triangle).
+std::optional<Vec3> latticeCrossing(const FanLattice &lattice) {
+  std::vector<Vec3> positions(lattice.points.size());
+  for (std::size_t p = 0; p < positions.size(); ++p) positions[p] = lattice.points[p].v;
+  const auto &triangles = lattice.triangles;
+  std::optional<Vec3> crossing;
+  TriangleBvh(positions, triangles).forEachOverlappingPair([&](int s, int t) {
+    if (crossing) return;
+    const auto &a = triangles[static_cast<std::size_t>(s)], &b = triangles[static_cast<std::size_t>(t)];
+    for (const std::uint32_t v : a)
+      if (v == b[0] || v == b[1] || v == b[2]) return;
+    crossing = trianglesCross({positions[a[0]], positions[a[1]], positions[a[2]]},
+                              {positions[b[0]], positions[b[1]], positions[b[2]]});
+  });
+  return crossing;
+}
+} // namespace
+
+std::optional<Vec3> patchSelfCrossing(const Patch &patch) {
+  const FanLattice coarse = fanLattice(patch, 24);
+  if (normalsInOneHalfSpace(coarse) || !latticeCrossing(coarse)) return std::nullopt;
+  return latticeCrossing(fanLattice(patch, 48));
+}
+
+} // namespace v1
+} // namespace curvenet
