@@ -53,8 +53,11 @@ FanLattice fanLattice(const Patch &patch, int rows) {
 }
 
 /// True when every normal du × dv of the lattice points into the half-space
-/// of their sum: the patch is then one-sheeted over the plane normal to it
-/// (its projection there a local diffeomorphism), and no search is needed.
+/// of their sum (false where one is not finite). The patch's projection onto
+/// the plane normal to that sum is then a local diffeomorphism: it could
+/// pass through itself only by winding its boundary loop around that axis,
+/// as no face of the public models does, so the search is skipped — most
+/// faces, which keeps the build's cost down.
 bool normalsInOneHalfSpace(const FanLattice &lattice) {
   Vec3 sum{0, 0, 0};
   for (const DualVec3 &p : lattice.points) sum += normalized(cross(p.du, p.dv));
