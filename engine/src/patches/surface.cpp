@@ -480,9 +480,9 @@ const NormalFence *fenceOf(const Impl &impl, int e, int f) {
 
 /// The first of these variants of a patch that folds as built (with the
 /// corner shares its ribbons ask for), inside or at a corner, that does not
-/// fold (docs/surfaces.md, Folds): the asked shares with the two-ribbon blend alone (μ = 1) at the
-/// corners `foldingCorners` (foldedCorners), then eq. 17's corners alone
-/// (μ = 0 everywhere), the two-ribbon blend at every corner (μ = 1), then
+/// fold (docs/surfaces.md, Folds): the asked shares with the two-ribbon
+/// blend alone (μ = 1) at the corners `foldingCorners` (foldedCorners),
+/// then eq. 17's corners alone (μ = 0 everywhere), the two-ribbon blend at every corner (μ = 1), then
 /// both again with the ribbons' cross-derivatives at three quarters and at
 /// half their length. `build(scale, shares)` makes one: the end targets
 /// scaled (they take the neighbouring curves' parameter speed, whatever the
@@ -496,9 +496,9 @@ const NormalFence *fenceOf(const Impl &impl, int e, int f) {
 /// the fold grid nor on one of kFineFoldRows rows (box.obj's triangles with
 /// the blend pass the first and fold near their centre on the second; at
 /// 3/4 length they pass both) nor at a corner, and does not pass through
-/// itself (patchSelfCrossing); failing that, when the patch
-/// folds on the fold grid (`foldsInside`), the first variant that passes
-/// the fold grid; else null.
+/// itself (patchSelfCrossing); failing that, when the patch folds on the
+/// fold grid (`foldsInside`), the first variant that passes the fold grid;
+/// else null.
 /// Three times the fold grid, below Patch::kTableResolution: no ribbon
 /// tables are built for a variant.
 constexpr int kFineFoldRows = 3 * kFoldRows;
@@ -518,8 +518,8 @@ std::shared_ptr<const Patch> unfoldedVariant(const Patch &patch, bool foldsInsid
   for (std::size_t v = 0; v < variants.size(); ++v) {
     const auto &[scale, shares] = variants[v];
     // The patch itself, or a variant already tried.
-    if ((scale == 1.0 && shares == asked) || std::find(variants.begin(), variants.begin() + v, variants[v]) != variants.begin() + v)
-      continue;
+    const bool tried = std::find(variants.begin(), variants.begin() + v, variants[v]) != variants.begin() + v;
+    if ((scale == 1.0 && shares == asked) || tried) continue;
     std::shared_ptr<const Patch> candidate = build(scale, shares);
     if (folds(*candidate, kFoldRows) || !accepts(*candidate)) continue;
     if (!folds(*candidate, kFineFoldRows) && foldedCorners(*candidate).empty() && !patchSelfCrossing(*candidate))
@@ -640,7 +640,10 @@ FaceBuild buildFace(const Impl &impl, int f) {
     result.patch = std::make_shared<const Patch>(std::move(ribbons), impl.options);
   }
   result.folded = folds(*result.patch);
-  if (!g1 && !g2) return result;
+  if (!g1 && !g2) {
+    result.selfCrossing = patchSelfCrossing(*result.patch);
+    return result;
+  }
   // The Gregory schemes' patch for given corner shares, its ribbons' end
   // targets scaled by `scale`.
   auto withShares = [&](std::vector<double> shares, double scale) -> std::shared_ptr<const Patch> {
