@@ -48,6 +48,7 @@
 #include "curvenet/tessellate.hpp"
 #include "approximation/triangle_bvh.hpp"
 #include "patches/corner_grid.hpp"
+#include "patches/crossing.hpp"
 #include "patches/patch.hpp"
 
 using namespace curvenet;
@@ -363,24 +364,26 @@ TEST(RobustnessCorpus, SharedSketches) {
   // samples (ShapeReport::cornerFolds, turned-over normals within
   // 3e-4–2e-3 of the diagonal: doghead 2 corners, dress 4, bathtub 4), are
   // gone since such corners take the two-ribbon blend (buildFace).
-  // Not yet met: under gregory-g2 faces pass through each other without
-  // folding in their own parameters (ShapeReport::intersections), where a
-  // patch curls over a thin part: doghead's ear stalks (faces 10 and 11,
-  // 34 and 35) and bathtub faces 1 and 20, 47 and 48. A face through itself
-  // is rebuilt by the variant search (patchSelfCrossing): bathtub's face 34
-  // under gregory-g2 and sewing_machine's faces 10, 11 and 36 under
-  // gregory-g1 did so before. composite-ribbon, the .lop files and the
-  // built-ins have none.
+  // Faces passing through each other without folding in their own
+  // parameters (ShapeReport::intersections), where a gregory-g2 patch
+  // curled over a thin part — doghead's ear stalks (faces 10 and 11, 34
+  // and 35) and bathtub's faces 1 and 20 — are gone since one face of such
+  // a pair takes a variant (separateCrossingFaces). Not yet met: bathtub's
+  // faces 47 and 48, nearly in one plane, cross under every variant of
+  // either. A face through itself is rebuilt by the variant search
+  // (patchSelfCrossing): bathtub's face 34 under gregory-g2 and
+  // sewing_machine's faces 10, 11 and 36 under gregory-g1 did so before.
+  // composite-ribbon, the .lop files and the built-ins have none.
   auto intersections = [](int count) { return Expectation{0, 1.05, 1e-4, 1e-6, 0, count}; };
   const std::map<std::string, std::array<Expectation, 3>> rows = {
-      {"doghead.obj", {{kGoal, kGoal, intersections(2)}}},
+      {"doghead.obj", {{kGoal, kGoal, kGoal}}},
       {"spherecylinder.obj", {{kGoal, kGoal, kGoal}}},
       {"sewing_machine.obj", {{kGoal, kGoal, kGoal}}},
       {"box.obj", {{kGoal, kGoal, kGoal}}},
       {"dress.obj", {{kGoal, kGoal, kGoal}}},
       {"ellipsetorus.obj", {{kGoal, kGoal, kGoal}}},
       {"iron.obj", {{kGoal, kGoal, kGoal}}},
-      {"bathtub.obj", {{kGoal, kGoal, intersections(2)}}},
+      {"bathtub.obj", {{kGoal, kGoal, intersections(1)}}},
   };
 
   int files = 0;
@@ -520,21 +523,49 @@ TEST(SelfIntersection, TrianglesCrossWhereAnEdgeOfOnePassesThroughTheOther) {
   EXPECT_FALSE(trianglesCross(flat, cornered).has_value());
 }
 
+/// The smallest distance (relative to the diagonal) from `point` to a place
+/// where triangles of faces a and b within 3 % of the diagonal of it cross,
+/// by brute force over every such pair of `mesh` (no hierarchy); infinity
+/// where none do.
+double nearestCrossing(const Mesh &mesh, int faceA, int faceB, const Vec3 &point, double diagonal) {
+  auto corners = [&](std::uint32_t t) {
+    const auto &tri = mesh.triangles[t];
+    return std::array<Vec3, 3>{mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]};
+  };
+  auto near = [&](int face) {
+    std::vector<std::uint32_t> found;
+    for (std::uint32_t t = mesh.faceTriangleStart[face]; t < mesh.faceTriangleStart[face + 1]; ++t)
+      if (norm(mesh.positions[mesh.triangles[t][0]] - point) < 0.03 * diagonal) found.push_back(t);
+    return found;
+  };
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const std::uint32_t s : near(faceA))
+    for (const std::uint32_t t : near(faceB)) {
+      const auto &a = mesh.triangles[s], &b = mesh.triangles[t];
+      if (std::any_of(a.begin(), a.end(), [&](std::uint32_t v) { return v == b[0] || v == b[1] || v == b[2]; }))
+        continue;
+      if (const std::optional<Vec3> crossing = trianglesCross(corners(s), corners(t)))
+        nearest = std::min(nearest, norm(*crossing - point) / diagonal);
+    }
+  return nearest;
+}
+
 // Faces that pass through each other (ShapeReport::intersections) do so on
-// a finer mesh too: for each pair the shape report names on doghead.obj's
-// gregory-g2 surface, a brute-force search over every pair of the two
-// faces' triangles near the reported point at 64 intervals per segment (no
-// hierarchy) finds crossing triangles within 2 % of the diagonal of it. And
-// doghead's gregory-g1 and composite-ribbon surfaces have none.
+// a finer mesh too: for the pair the shape report names on bathtub.obj's
+// gregory-g2 surface (faces 47 and 48, which no variant of either takes
+// apart), a brute-force search over every pair of the two faces' triangles
+// near the reported point at 64 intervals per segment finds crossing
+// triangles within 2 % of the diagonal of it. And bathtub's gregory-g1 and
+// composite-ribbon surfaces have none.
 TEST(SelfIntersection, FacesPassingThroughEachOtherAreFoundAgainOnAFinerMesh) {
-  const std::string path = std::string(CURVENET_SHARED_DATA_DIR) + "/sketches/doghead.obj";
+  const std::string path = std::string(CURVENET_SHARED_DATA_DIR) + "/sketches/bathtub.obj";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent: no sketch whose faces intersect";
   const Network network = Network::build(networkFromCurveGraph(readCurveGraphFile(path), {}, path).description, path);
   for (Scheme scheme : {Scheme::GregoryG1, Scheme::CompositeRibbon})
     EXPECT_TRUE(measureShape(Surface::build(network, {scheme})).intersections.empty()) << schemeName(scheme);
   const Surface surface = Surface::build(network, {Scheme::GregoryG2});
   const ShapeReport shape = measureShape(surface);
-  ASSERT_EQ(shape.intersections.size(), 2u);
+  ASSERT_EQ(shape.intersections.size(), 1u);
   for (const FaceShape &face : shape.faces)
     EXPECT_EQ(face.intersects, std::any_of(shape.intersections.begin(), shape.intersections.end(),
                                            [&](const FaceIntersection &x) { return x.faceA == face.face || x.faceB == face.face; }));
@@ -542,27 +573,70 @@ TEST(SelfIntersection, FacesPassingThroughEachOtherAreFoundAgainOnAFinerMesh) {
   const Mesh mesh = tessellate(surface, {64, 0});
   for (const FaceIntersection &x : shape.intersections) {
     SCOPED_TRACE("faces " + std::to_string(x.faceA) + " and " + std::to_string(x.faceB));
-    auto corners = [&](std::uint32_t t) {
-      const auto &tri = mesh.triangles[t];
-      return std::array<Vec3, 3>{mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]};
-    };
-    // The two faces' triangles within 3 % of the diagonal of the point.
-    auto near = [&](int face) {
-      std::vector<std::uint32_t> found;
-      for (std::uint32_t t = mesh.faceTriangleStart[face]; t < mesh.faceTriangleStart[face + 1]; ++t)
-        if (norm(mesh.positions[mesh.triangles[t][0]] - x.point) < 0.03 * network.diagonal()) found.push_back(t);
-      return found;
-    };
-    double nearest = std::numeric_limits<double>::infinity();
-    for (const std::uint32_t s : near(x.faceA))
-      for (const std::uint32_t t : near(x.faceB)) {
-        const auto &a = mesh.triangles[s], &b = mesh.triangles[t];
-        if (std::any_of(a.begin(), a.end(), [&](std::uint32_t v) { return v == b[0] || v == b[1] || v == b[2]; }))
-          continue;
-        if (const std::optional<Vec3> crossing = trianglesCross(corners(s), corners(t)))
-          nearest = std::min(nearest, norm(*crossing - x.point) / network.diagonal());
-      }
-    EXPECT_LE(nearest, 0.02);
+    EXPECT_LE(nearestCrossing(mesh, x.faceA, x.faceB, x.point, network.diagonal()), 0.02);
+  }
+}
+
+// forEachLatticeCrossing: a face's lattice crosses its copy turned a quarter
+// turn about a line through its middle, and not its copy moved away; the
+// sphere-dodecahedron's faces, which meet along curves and at corners, do
+// not cross one another once triangles that both touch their boundaries
+// are left out between faces that share a vertex (and do where they are not).
+TEST(SelfIntersection, LatticesCrossWhereTheirPatchesDo) {
+  const Surface sphere = Surface::build(Network::build(builtinNetwork("sphere-dodecahedron")), {Scheme::GregoryG2});
+  const PatchLattice face = patchLattice(*SurfaceAccess::patch(sphere, 0), 24);
+  const Vec3 middle = face.box.center();
+  PatchLattice turned = face, moved = face;
+  for (Vec3 &p : turned.positions) {
+    const Vec3 q = p - middle; // a quarter turn about the x axis through the middle
+    p = middle + Vec3{q.x, -q.z, q.y};
+  }
+  turned.box = {};
+  for (const Vec3 &p : turned.positions) turned.box.add(p);
+  for (Vec3 &p : moved.positions) p += Vec3{3, 0, 0};
+  moved.box = {};
+  for (const Vec3 &p : moved.positions) moved.box.add(p);
+  auto crossings = [](std::vector<const PatchLattice *> lattices, bool touching) {
+    std::set<std::pair<int, int>> found;
+    forEachLatticeCrossing(lattices, [&](int, int) { return touching; },
+                           [&](int a, int b, const Vec3 &) { EXPECT_TRUE(found.insert({a, b}).second); });
+    return found;
+  };
+  EXPECT_EQ(crossings({&face, &turned}, false), (std::set<std::pair<int, int>>{{0, 1}}));
+  EXPECT_TRUE(crossings({&face, &moved}, false).empty());
+  std::vector<PatchLattice> faces;
+  for (int f = 0; f < sphere.faceCount(); ++f) faces.push_back(patchLattice(*SurfaceAccess::patch(sphere, f), 24));
+  std::vector<const PatchLattice *> all;
+  for (const PatchLattice &l : faces) all.push_back(&l);
+  EXPECT_TRUE(crossings(all, true).empty());
+  // Counted, neighbours' boundary chords do cross (30 pairs here).
+  EXPECT_FALSE(crossings(all, false).empty());
+}
+
+// A face passing through a neighbour takes a variant (separateCrossingFaces):
+// doghead.obj's gregory-g2 ear stalks, where faces 11 and 35 with the
+// two-ribbon blend curled through faces 10 and 34 near these points, have
+// no crossing triangles there at 64 intervals per segment (brute force) and
+// the shape report, on the tessellation rather than the build's lattices,
+// finds no faces passing through each other. The faces that moved took a
+// uniform variant of the corner shares and do not fold.
+TEST(SelfIntersection, FacesPassingThroughANeighbourTakeAVariant) {
+  const std::string path = std::string(CURVENET_SHARED_DATA_DIR) + "/sketches/doghead.obj";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent: no sketch whose faces intersected";
+  const Network network = Network::build(networkFromCurveGraph(readCurveGraphFile(path), {}, path).description, path);
+  const Surface surface = Surface::build(network, {Scheme::GregoryG2});
+  const ShapeReport shape = measureShape(surface);
+  EXPECT_TRUE(shape.intersections.empty());
+  EXPECT_TRUE(shape.foldedFaces.empty());
+  const Mesh mesh = tessellate(surface, {64, 0});
+  const std::pair<std::array<int, 2>, Vec3> before[] = {{{10, 11}, {-0.04915, 0.2162, 0.7059}},
+                                                        {{34, 35}, {-0.05316, 0.2703, -0.6487}}};
+  for (const auto &[faces, point] : before) {
+    SCOPED_TRACE("faces " + std::to_string(faces[0]) + " and " + std::to_string(faces[1]));
+    EXPECT_EQ(nearestCrossing(mesh, faces[0], faces[1], point, network.diagonal()),
+              std::numeric_limits<double>::infinity());
+    const std::vector<double> &shares = SurfaceAccess::patch(surface, faces[1])->blendShares();
+    EXPECT_TRUE(std::all_of(shares.begin(), shares.end(), [&](double s) { return s == shares.front(); }));
   }
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -20,6 +21,7 @@ namespace {
 struct FanLattice {
   std::vector<DualVec3> points; ///< with their derivatives
   std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<char> boundary; ///< per point: on the domain's boundary (i + j = rows)
 };
 
 FanLattice fanLattice(const Patch &patch, int rows) {
@@ -41,6 +43,9 @@ FanLattice fanLattice(const Patch &patch, int rows) {
         us[id(k, i, j)] = uv.x, vs[id(k, i, j)] = uv.y;
       }
   FanLattice lattice;
+  lattice.boundary.assign(us.size(), 0);
+  for (int k = 0; k < n; ++k)
+    for (int i = 1; i <= rows; ++i) lattice.boundary[id(k, i, rows - i)] = 1;
   lattice.points.resize(us.size());
   patch.evaluateBatch(us.size(), us.data(), vs.data(), lattice.points.data());
   for (int k = 0; k < n; ++k)
@@ -86,12 +91,73 @@ std::optional<Vec3> latticeCrossing(const FanLattice &lattice) {
   });
   return crossing;
 }
+
+PatchLattice asTriangles(const FanLattice &fan) {
+  PatchLattice lattice;
+  lattice.positions.resize(fan.points.size());
+  lattice.normals.resize(fan.points.size());
+  for (std::size_t p = 0; p < fan.points.size(); ++p)
+    lattice.positions[p] = fan.points[p].v, lattice.normals[p] = normalized(cross(fan.points[p].du, fan.points[p].dv));
+  lattice.triangles = fan.triangles;
+  lattice.onBoundary.resize(fan.triangles.size());
+  for (std::size_t t = 0; t < fan.triangles.size(); ++t)
+    lattice.onBoundary[t] = std::any_of(fan.triangles[t].begin(), fan.triangles[t].end(),
+                                        [&](std::uint32_t v) { return fan.boundary[v] != 0; });
+  for (const Vec3 &p : lattice.positions) lattice.box.add(p);
+  return lattice;
+}
 } // namespace
 
-std::optional<Vec3> patchSelfCrossing(const Patch &patch) {
+std::optional<Vec3> patchSelfCrossing(const Patch &patch, PatchLattice &coarseLattice) {
   const FanLattice coarse = fanLattice(patch, 24);
+  coarseLattice = asTriangles(coarse);
   if (normalsInOneHalfSpace(coarse) || !latticeCrossing(coarse)) return std::nullopt;
   return latticeCrossing(fanLattice(patch, 48));
+}
+
+std::optional<Vec3> patchSelfCrossing(const Patch &patch) {
+  PatchLattice coarse;
+  return patchSelfCrossing(patch, coarse);
+}
+
+PatchLattice patchLattice(const Patch &patch, int rows) { return asTriangles(fanLattice(patch, rows)); }
+
+void forEachLatticeCrossing(std::span<const PatchLattice *const> lattices,
+                            const std::function<bool(int a, int b)> &touching,
+                            const std::function<void(int a, int b, const Vec3 &point)> &visit) {
+  // Every lattice's triangles in one set, each remembering its lattice; the
+  // set searched against itself.
+  std::vector<Vec3> positions;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<int> latticeOf;
+  std::vector<char> onBoundary;
+  for (std::size_t l = 0; l < lattices.size(); ++l) {
+    if (!lattices[l]) continue;
+    const PatchLattice &lattice = *lattices[l];
+    const auto first = static_cast<std::uint32_t>(positions.size());
+    positions.insert(positions.end(), lattice.positions.begin(), lattice.positions.end());
+    for (const auto &t : lattice.triangles) triangles.push_back({first + t[0], first + t[1], first + t[2]});
+    latticeOf.insert(latticeOf.end(), lattice.triangles.size(), static_cast<int>(l));
+    onBoundary.insert(onBoundary.end(), lattice.onBoundary.begin(), lattice.onBoundary.end());
+  }
+  std::map<std::pair<int, int>, Vec3> found;
+  std::map<std::pair<int, int>, bool> touchingPairs;
+  TriangleBvh(positions, triangles).forEachOverlappingPair([&](int s, int t) {
+    const auto S = static_cast<std::size_t>(s), T = static_cast<std::size_t>(t);
+    if (latticeOf[S] == latticeOf[T]) return;
+    const std::pair pair = std::minmax(latticeOf[S], latticeOf[T]);
+    if (found.count(pair)) return;
+    if (onBoundary[S] && onBoundary[T]) {
+      auto [at, fresh] = touchingPairs.try_emplace(pair, false);
+      if (fresh) at->second = touching(pair.first, pair.second);
+      if (at->second) return;
+    }
+    const auto &a = triangles[S], &b = triangles[T];
+    if (const std::optional<Vec3> x = trianglesCross({positions[a[0]], positions[a[1]], positions[a[2]]},
+                                                     {positions[b[0]], positions[b[1]], positions[b[2]]}))
+      found.emplace(pair, *x);
+  });
+  for (const auto &[pair, point] : found) visit(pair.first, pair.second, point);
 }
 
 } // namespace v1

@@ -2,7 +2,12 @@
 // its parameters (docs/surfaces.md, Intersections).
 #pragma once
 
+#include <array>
+#include <cstdint>
+#include <functional>
 #include <optional>
+#include <span>
+#include <vector>
 
 #include "curvenet/vec.hpp"
 
@@ -24,7 +29,37 @@ class Patch;
 /// 6 and 7 under gregory-g1 at 16 and 32 intervals per segment). About
 /// n·300 evaluations for an n-sided patch, n·1176 more where the first
 /// lattice crosses.
+/// With `coarse`, also the 24-row lattice it searched (patchLattice), for
+/// the search between patches (forEachLatticeCrossing).
 std::optional<Vec3> patchSelfCrossing(const Patch &patch);
+struct PatchLattice;
+std::optional<Vec3> patchSelfCrossing(const Patch &patch, PatchLattice &coarse);
+
+/// A patch's fan lattice at `rows` rows (see patchSelfCrossing) as
+/// triangles, each marked when a corner lies on the domain's boundary.
+struct PatchLattice {
+  std::vector<Vec3> positions;
+  std::vector<Vec3> normals; ///< unit, per point
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<char> onBoundary; ///< per triangle
+  BoundingBox box; ///< of the positions
+  /// Whether the boxes of this and `other` overlap (touching counts).
+  bool mayMeet(const PatchLattice &other) const {
+    return box.min.x <= other.box.max.x && other.box.min.x <= box.max.x && box.min.y <= other.box.max.y &&
+           other.box.min.y <= box.max.y && box.min.z <= other.box.max.z && other.box.min.z <= box.max.z;
+  }
+};
+PatchLattice patchLattice(const Patch &patch, int rows);
+
+/// visit(a, b, point), a < b indices into `lattices`, for each pair of
+/// lattices with two triangles that cross (trianglesCross), once a pair.
+/// Triangles that both touch their domains' boundaries are not counted
+/// when touching(a, b): patches that meet along a curve or at a corner
+/// sample it apart, and their boundary chords can cross where the
+/// patches only meet. Null lattices are skipped.
+void forEachLatticeCrossing(std::span<const PatchLattice *const> lattices,
+                            const std::function<bool(int a, int b)> &touching,
+                            const std::function<void(int a, int b, const Vec3 &point)> &visit);
 
 } // namespace v1
 } // namespace curvenet

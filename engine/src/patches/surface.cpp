@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <span>
@@ -470,6 +471,7 @@ struct FaceBuild {
   std::vector<Impl::DomainSide> sides;
   bool folded = false;
   std::optional<Vec3> selfCrossing; ///< patchSelfCrossing of `patch`
+  PatchLattice lattice;             ///< its 24-row lattice (patchSelfCrossing), when built here
 };
 
 /// The fence face f sees along segment e.
@@ -529,7 +531,11 @@ std::shared_ptr<const Patch> unfoldedVariant(const Patch &patch, bool foldsInsid
   return coarse;
 }
 
-FaceBuild buildFace(const Impl &impl, int f) {
+/// Face f's patch as its ribbons ask, or the first variant that does not
+/// fold or pass through itself (unfoldedVariant). With `clearOfOthers`, a
+/// patch it refuses (one passing through a neighbour, separateCrossingFaces)
+/// takes a variant too, and variants must pass it.
+FaceBuild buildFace(const Impl &impl, int f, const std::function<bool(const Patch &)> *clearOfOthers = nullptr) {
   const Face &face = impl.network.faces()[f];
   const bool g2 = impl.options.scheme == Scheme::GregoryG2;
   FaceBuild result;
@@ -641,7 +647,7 @@ FaceBuild buildFace(const Impl &impl, int f) {
   }
   result.folded = folds(*result.patch);
   if (!g1 && !g2) {
-    result.selfCrossing = patchSelfCrossing(*result.patch);
+    result.selfCrossing = patchSelfCrossing(*result.patch, result.lattice);
     return result;
   }
   // The Gregory schemes' patch for given corner shares, its ribbons' end
@@ -659,7 +665,9 @@ FaceBuild buildFace(const Impl &impl, int f) {
   // gregory-g2 wants each side's normal to face its fence (a face turned
   // over along a side meets its neighbour's normals there and passes the
   // fold grid).
-  auto accepts = [g2](const Patch &patch) { return !g2 || facesItsFences(patch); };
+  auto accepts = [&](const Patch &patch) {
+    return (!g2 || facesItsFences(patch)) && (!clearOfOthers || (*clearOfOthers)(patch));
+  };
   // A face that folds with the shares its ribbons ask for is built again
   // (unfoldedVariant): first with the two-ribbon blend alone at the corners
   // that fold below the fold grid (foldedCorners; docs/surfaces.md, Corner
@@ -669,14 +677,15 @@ FaceBuild buildFace(const Impl &impl, int f) {
   // shares and shorter cross-derivatives. So is a face that passes through
   // itself without folding.
   const std::vector<int> foldingCorners = foldedCorners(*result.patch);
-  result.selfCrossing = patchSelfCrossing(*result.patch);
-  if (result.folded || !foldingCorners.empty() || result.selfCrossing) {
+  result.selfCrossing = patchSelfCrossing(*result.patch, result.lattice);
+  if (result.folded || !foldingCorners.empty() || result.selfCrossing ||
+      (clearOfOthers && !(*clearOfOthers)(*result.patch))) {
     auto build = [&](double scale, const std::vector<double> &shares) { return withShares(shares, scale); };
     if (std::shared_ptr<const Patch> unfolded =
             unfoldedVariant(*result.patch, result.folded, foldingCorners, build, accepts, folds)) {
       result.patch = std::move(unfolded);
       result.folded = false;
-      result.selfCrossing = patchSelfCrossing(*result.patch);
+      result.selfCrossing = patchSelfCrossing(*result.patch, result.lattice);
     }
   }
   return result;
@@ -700,13 +709,139 @@ void buildEdgeCurvatures(Impl &impl, std::span<const int> segments) {
               [&](std::size_t k) { impl.edgeCurvatures[segments[k]] = buildEdgeCurvature(impl, segments[k]); });
 }
 
-/// The patches of the listed faces, in parallel; the folded list updated.
+/// How far a lattice's normals turn from their mean: the least cosine
+/// between the two (1 for a plane).
+double leastAlignment(const PatchLattice &lattice) {
+  Vec3 sum{0, 0, 0};
+  for (const Vec3 &n : lattice.normals) sum += n;
+  const Vec3 mean = normalized(sum);
+  double least = 1;
+  for (const Vec3 &n : lattice.normals) least = std::min(least, dot(n, mean));
+  return least;
+}
+
+/// Faces whose patches pass through each other (docs/surfaces.md,
+/// Intersections), built again. A pair of the listed faces' and their
+/// neighbours' 24-row lattices that cross (forEachLatticeCrossing; faces
+/// sharing a vertex are not counted where both triangles touch their
+/// boundaries), found again at 48 rows, gives one of its two faces the
+/// first variant (buildFace, unfoldedVariant) whose lattice crosses no other
+/// face's: the face whose normals turn further from their mean first (the
+/// one curling over the other), else the other. On doghead.obj under
+/// gregory-g2 the ear stalks' faces 11 and 35, whose patches with the
+/// two-ribbon blend at every corner curl through faces 10 and 34, take
+/// eq. 17's corners. Faces kept from the G¹ surface and composite-ribbon
+/// patches have no variants.
+void separateCrossingFaces(const Impl &impl, std::span<const int> faces, std::vector<FaceBuild> &built) {
+  if (impl.options.scheme != Scheme::GregoryG1 && impl.options.scheme != Scheme::GregoryG2) return;
+  const int count = static_cast<int>(impl.network.faces().size());
+  std::vector<int> builtIndex(static_cast<std::size_t>(count), -1);
+  for (std::size_t k = 0; k < faces.size(); ++k) builtIndex[static_cast<std::size_t>(faces[k])] = static_cast<int>(k);
+  auto patchOf = [&](int f) -> const Patch * {
+    const int k = builtIndex[static_cast<std::size_t>(f)];
+    return k >= 0 ? built[static_cast<std::size_t>(k)].patch.get() : impl.patches[static_cast<std::size_t>(f)].get();
+  };
+  // Each face's lattice at 24 rows (the build's, else made here) and at 12,
+  // for the search over all faces: the same search at 24 rows took about
+  // as long as the rest of doghead.obj's G¹ build.
+  std::vector<PatchLattice> own(static_cast<std::size_t>(count)), coarse(static_cast<std::size_t>(count));
+  std::vector<const PatchLattice *> lattices(static_cast<std::size_t>(count), nullptr),
+      coarseLattices(static_cast<std::size_t>(count), nullptr);
+  forEachItem(static_cast<std::size_t>(count), [&](std::size_t f) {
+    const Patch *patch = patchOf(static_cast<int>(f));
+    if (!patch) return;
+    const int k = builtIndex[f];
+    if (k >= 0 && !built[static_cast<std::size_t>(k)].lattice.triangles.empty()) {
+      lattices[f] = &built[static_cast<std::size_t>(k)].lattice;
+    } else {
+      own[f] = patchLattice(*patch, 24);
+      lattices[f] = &own[f];
+    }
+    coarse[f] = patchLattice(*patch, 12);
+    coarseLattices[f] = &coarse[f];
+  });
+  // Faces sharing a vertex meet there or along a curve.
+  std::vector<std::vector<int>> vertices(static_cast<std::size_t>(count));
+  for (int f = 0; f < count; ++f) {
+    auto &v = vertices[static_cast<std::size_t>(f)];
+    for (const FaceSide &side : impl.network.faces()[static_cast<std::size_t>(f)].sides)
+      for (const int e : side.segments)
+        v.push_back(impl.network.segments()[static_cast<std::size_t>(e)].start),
+            v.push_back(impl.network.segments()[static_cast<std::size_t>(e)].end);
+    std::sort(v.begin(), v.end());
+  }
+  auto touching = [&](int a, int b) {
+    const auto &x = vertices[static_cast<std::size_t>(a)], &y = vertices[static_cast<std::size_t>(b)];
+    for (std::size_t i = 0, j = 0; i < x.size() && j < y.size();) {
+      if (x[i] == y[j]) return true;
+      x[i] < y[j] ? ++i : ++j;
+    }
+    return false;
+  };
+  std::vector<std::pair<int, int>> pairs;
+  forEachLatticeCrossing(coarseLattices, touching, [&](int a, int b, const Vec3 &) {
+    if (builtIndex[static_cast<std::size_t>(a)] >= 0 || builtIndex[static_cast<std::size_t>(b)] >= 0)
+      pairs.push_back({a, b});
+  });
+  // Whether a lattice of face f crosses no other face's.
+  auto crossesNone = [&](int f, const PatchLattice &lattice) {
+    std::vector<const PatchLattice *> near{&lattice};
+    std::vector<int> faceOf{f};
+    for (int g = 0; g < count; ++g)
+      if (g != f && lattices[static_cast<std::size_t>(g)] &&
+          lattice.mayMeet(*lattices[static_cast<std::size_t>(g)]))
+        near.push_back(lattices[static_cast<std::size_t>(g)]), faceOf.push_back(g);
+    bool crosses = false;
+    forEachLatticeCrossing(
+        near, [&](int a, int b) { return touching(faceOf[static_cast<std::size_t>(a)], faceOf[static_cast<std::size_t>(b)]); },
+        [&](int a, int, const Vec3 &) { crosses = crosses || a == 0; });
+    return !crosses;
+  };
+  for (const auto &[a, b] : pairs) {
+    // Found again at 48 rows (a coarse lattice's chords can cross where the
+    // patches do not), and not yet taken apart by an earlier pair's variant.
+    const PatchLattice fineA = patchLattice(*patchOf(a), 48), fineB = patchLattice(*patchOf(b), 48);
+    const PatchLattice *fine[2] = {&fineA, &fineB};
+    bool confirmed = false;
+    forEachLatticeCrossing(fine, [&](int, int) { return touching(a, b); }, [&](int, int, const Vec3 &) { confirmed = true; });
+    if (!confirmed) continue;
+    std::vector<int> candidates;
+    for (const int f : {a, b})
+      if (builtIndex[static_cast<std::size_t>(f)] >= 0 && !keptG1(impl, f)) candidates.push_back(f);
+    std::sort(candidates.begin(), candidates.end(), [&](int x, int y) {
+      return leastAlignment(*lattices[static_cast<std::size_t>(x)]) < leastAlignment(*lattices[static_cast<std::size_t>(y)]);
+    });
+    // A variant of face f crossing no other face, or nullopt.
+    auto variantOf = [&](int f) -> std::optional<FaceBuild> {
+      const std::function<bool(const Patch &)> clear = [&](const Patch &patch) {
+        return crossesNone(f, patchLattice(patch, 24));
+      };
+      FaceBuild rebuilt = buildFace(impl, f, &clear);
+      if (rebuilt.lattice.triangles.empty() || !crossesNone(f, rebuilt.lattice)) return std::nullopt;
+      return rebuilt;
+    };
+    auto take = [&](int f, FaceBuild &&rebuilt) {
+      FaceBuild &slot = built[static_cast<std::size_t>(builtIndex[static_cast<std::size_t>(f)])];
+      slot = std::move(rebuilt);
+      lattices[static_cast<std::size_t>(f)] = &slot.lattice;
+    };
+    for (const int f : candidates)
+      if (std::optional<FaceBuild> rebuilt = variantOf(f)) {
+        take(f, std::move(*rebuilt));
+        break;
+      }
+  }
+}
+
+/// The patches of the listed faces, in parallel, faces passing through each
+/// other built again; the folded list updated.
 void buildFaces(Impl &impl, std::span<const int> faces) {
   const std::size_t count = impl.network.faces().size();
   impl.patches.resize(count);
   impl.domainSides.resize(count);
   std::vector<FaceBuild> built(faces.size());
   forEachItem(faces.size(), [&](std::size_t k) { built[k] = buildFace(impl, faces[k]); });
+  separateCrossingFaces(impl, faces, built);
   std::vector<char> folded(count, 0);
   for (int f : impl.folded) folded[f] = 1;
   impl.selfCrossings.resize(count);
