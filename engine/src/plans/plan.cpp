@@ -229,6 +229,14 @@ void EvaluationPlan::prefetchSidesAndBlends(std::size_t first, std::size_t count
     for (std::size_t k = first; k < first + count; k += kLine) __builtin_prefetch(array->data() + k);
 }
 
+void EvaluationPlan::prefetchSideAndBlendValues(std::size_t first, std::size_t count) const {
+  if (!soa_ || perSide_ || first >= size()) return;
+  count = std::min(count, size() - first);
+  constexpr std::size_t kLine = 64 / sizeof(double); // doubles a cache line
+  for (const std::vector<double> *array : {&sideValues_, &blendValues_})
+    for (std::size_t k = first; k < first + count; k += kLine) __builtin_prefetch(array->data() + k);
+}
+
 SideBlendArrays EvaluationPlan::sidesAndBlends(int i, std::size_t first, std::size_t count, double *const s[3],
                                                double *const blend[3]) const {
   CURVENET_CHECK(soa_, "sidesAndBlends on a composite-ribbon plan");

@@ -108,6 +108,8 @@ public:
   /// their gradients at samples [first, first + count) (the arrays
   /// sidesAndBlends reads) ahead of their use; a hint, no effect on results.
   void prefetchSidesAndBlends(std::size_t first, std::size_t count) const;
+  /// The same for the values alone (the arrays a position pass reads).
+  void prefetchSideAndBlendValues(std::size_t first, std::size_t count) const;
 
   /// The tessellator's boundary rows of a uniform layout: every side's
   /// parameter and every corner's blend with their gradients at the samples

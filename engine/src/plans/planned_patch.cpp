@@ -425,6 +425,15 @@ void Patch::evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPla
         kernels::gregoryCornerWeights(count, s, sPrevious, into, stride);
       },
       [&](int m, std::size_t offset, std::size_t count, const double *const *cornerWeights, std::size_t stride) {
+        // Member m's next block asked for while it computes this one (as the
+        // jets' below): the weights' pass brings each block's side values
+        // in, but the blends were first read by the kernel, where its loads
+        // of them missed. On a Zen 5 the G² face interiors −3 to −4 %
+        // (curvenet bench, four alternating runs); on the Intel machine the
+        // same hint had measured no clear gain.
+        if (offset + count < group.count)
+          plan.prefetchSideAndBlendValues(group.first + m * group.stride + offset + count,
+                                          std::min(count, group.count - offset - count));
         std::array<const double *, Patch::kMaxSides> side, blend;
         for (int i = 0; i < domain_.sides(); ++i) {
           const std::size_t from = group.first + group.source(m, i) * group.stride + offset;
@@ -458,8 +467,7 @@ void Patch::evaluatePlannedGroup(const EvaluationPlan &plan, const EvaluationPla
         // the next block's of member m + 1 asked for while m computes, so
         // that a block offset's members ask for all the next one's.
         // TessellateCpu G² −2 to −5 % (four sets of seven to fifteen
-        // alternating runs); on the face interiors, whose positions read two
-        // arrays instead of six, no clear gain.
+        // alternating runs).
         if (offset + count < group.count)
           plan.prefetchSidesAndBlends(group.first + ((m + 1) % group.members) * group.stride + offset + count,
                                       std::min(count, group.count - offset - count));
