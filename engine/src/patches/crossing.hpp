@@ -29,11 +29,7 @@ class Patch;
 /// 6 and 7 under gregory-g1 at 16 and 32 intervals per segment). About
 /// n·300 evaluations for an n-sided patch, n·1176 more where the first
 /// lattice crosses.
-/// With `coarse`, also the 24-row lattice it searched (patchLattice), for
-/// the search between patches (forEachLatticeCrossing).
 std::optional<Vec3> patchSelfCrossing(const Patch &patch);
-struct PatchLattice;
-std::optional<Vec3> patchSelfCrossing(const Patch &patch, PatchLattice &coarse);
 
 /// A patch's fan lattice at `rows` rows (see patchSelfCrossing) as
 /// triangles, each marked when a corner lies on the domain's boundary.
@@ -50,6 +46,10 @@ struct PatchLattice {
   }
 };
 PatchLattice patchLattice(const Patch &patch, int rows);
+
+/// patchSelfCrossing, also giving the 24-row lattice it searched, for the
+/// search between patches (forEachLatticeCrossing).
+std::optional<Vec3> patchSelfCrossing(const Patch &patch, PatchLattice &coarse);
 
 /// visit(a, b, point), a < b indices into `lattices`, for each pair of
 /// lattices with two triangles that cross (trianglesCross), once a pair.

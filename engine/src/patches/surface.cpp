@@ -720,9 +720,35 @@ double leastAlignment(const PatchLattice &lattice) {
   return least;
 }
 
+/// Whether two faces share a vertex: they meet there or along a curve.
+class SharedVertices {
+public:
+  explicit SharedVertices(const Network &network) : vertices_(network.faces().size()) {
+    for (std::size_t f = 0; f < vertices_.size(); ++f) {
+      for (const FaceSide &side : network.faces()[f].sides)
+        for (const int e : side.segments) {
+          const Segment &segment = network.segments()[static_cast<std::size_t>(e)];
+          vertices_[f].push_back(segment.start), vertices_[f].push_back(segment.end);
+        }
+      std::sort(vertices_[f].begin(), vertices_[f].end());
+    }
+  }
+  bool operator()(int a, int b) const {
+    const auto &x = vertices_[static_cast<std::size_t>(a)], &y = vertices_[static_cast<std::size_t>(b)];
+    for (std::size_t i = 0, j = 0; i < x.size() && j < y.size();) {
+      if (x[i] == y[j]) return true;
+      x[i] < y[j] ? ++i : ++j;
+    }
+    return false;
+  }
+
+private:
+  std::vector<std::vector<int>> vertices_;
+};
+
 /// Faces whose patches pass through each other (docs/surfaces.md,
 /// Intersections), built again. A pair of the listed faces' and their
-/// neighbours' 24-row lattices that cross (forEachLatticeCrossing; faces
+/// neighbours' 12-row lattices that cross (forEachLatticeCrossing; faces
 /// sharing a vertex are not counted where both triangles touch their
 /// boundaries), found again at 48 rows, gives one of its two faces the
 /// first variant (buildFace, unfoldedVariant) whose lattice crosses no other
@@ -760,30 +786,13 @@ void separateCrossingFaces(const Impl &impl, std::span<const int> faces, std::ve
     coarse[f] = patchLattice(*patch, 12);
     coarseLattices[f] = &coarse[f];
   });
-  // Faces sharing a vertex meet there or along a curve.
-  std::vector<std::vector<int>> vertices(static_cast<std::size_t>(count));
-  for (int f = 0; f < count; ++f) {
-    auto &v = vertices[static_cast<std::size_t>(f)];
-    for (const FaceSide &side : impl.network.faces()[static_cast<std::size_t>(f)].sides)
-      for (const int e : side.segments)
-        v.push_back(impl.network.segments()[static_cast<std::size_t>(e)].start),
-            v.push_back(impl.network.segments()[static_cast<std::size_t>(e)].end);
-    std::sort(v.begin(), v.end());
-  }
-  auto touching = [&](int a, int b) {
-    const auto &x = vertices[static_cast<std::size_t>(a)], &y = vertices[static_cast<std::size_t>(b)];
-    for (std::size_t i = 0, j = 0; i < x.size() && j < y.size();) {
-      if (x[i] == y[j]) return true;
-      x[i] < y[j] ? ++i : ++j;
-    }
-    return false;
-  };
+  const SharedVertices touching(impl.network);
   std::vector<std::pair<int, int>> pairs;
-  forEachLatticeCrossing(coarseLattices, touching, [&](int a, int b, const Vec3 &) {
+  forEachLatticeCrossing(coarseLattices, std::cref(touching), [&](int a, int b, const Vec3 &) {
     if (builtIndex[static_cast<std::size_t>(a)] >= 0 || builtIndex[static_cast<std::size_t>(b)] >= 0)
       pairs.push_back({a, b});
   });
-  // Whether a lattice of face f crosses no other face's.
+  // Whether a lattice of face f crosses no other face's (at 24 rows).
   auto crossesNone = [&](int f, const PatchLattice &lattice) {
     std::vector<const PatchLattice *> near{&lattice};
     std::vector<int> faceOf{f};
