@@ -92,6 +92,13 @@ std::optional<Vec3> latticeCrossing(const FanLattice &lattice) {
   return crossing;
 }
 
+/// Whether a box meets the box of the triangle (a, b, c).
+bool boxesMeet(const BoundingBox &box, const Vec3 &a, const Vec3 &b, const Vec3 &c) {
+  for (int i = 0; i < 3; ++i)
+    if (std::max({a[i], b[i], c[i]}) < box.min[i] || std::min({a[i], b[i], c[i]}) > box.max[i]) return false;
+  return true;
+}
+
 PatchLattice asTriangles(const FanLattice &fan) {
   PatchLattice lattice;
   lattice.positions.resize(fan.points.size());
@@ -124,7 +131,8 @@ PatchLattice patchLattice(const Patch &patch, int rows) { return asTriangles(fan
 
 void forEachLatticeCrossing(std::span<const PatchLattice *const> lattices,
                             const std::function<bool(int a, int b)> &touching,
-                            const std::function<void(int a, int b, const Vec3 &point)> &visit) {
+                            const std::function<void(int a, int b, const Vec3 &point)> &visit,
+                            const BoundingBox *within) {
   // Every lattice's triangles in one set, each remembering its lattice; the
   // set searched against itself.
   std::vector<Vec3> positions;
@@ -136,9 +144,14 @@ void forEachLatticeCrossing(std::span<const PatchLattice *const> lattices,
     const PatchLattice &lattice = *lattices[l];
     const auto first = static_cast<std::uint32_t>(positions.size());
     positions.insert(positions.end(), lattice.positions.begin(), lattice.positions.end());
-    for (const auto &t : lattice.triangles) triangles.push_back({first + t[0], first + t[1], first + t[2]});
-    latticeOf.insert(latticeOf.end(), lattice.triangles.size(), static_cast<int>(l));
-    onBoundary.insert(onBoundary.end(), lattice.onBoundary.begin(), lattice.onBoundary.end());
+    for (std::size_t t = 0; t < lattice.triangles.size(); ++t) {
+      const auto &tri = lattice.triangles[t];
+      if (within && !boxesMeet(*within, lattice.positions[tri[0]], lattice.positions[tri[1]], lattice.positions[tri[2]]))
+        continue;
+      triangles.push_back({first + tri[0], first + tri[1], first + tri[2]});
+      latticeOf.push_back(static_cast<int>(l));
+      onBoundary.push_back(lattice.onBoundary[t]);
+    }
   }
   std::map<std::pair<int, int>, Vec3> found;
   std::map<std::pair<int, int>, bool> touchingPairs;

@@ -56,10 +56,12 @@ std::optional<Vec3> patchSelfCrossing(const Patch &patch, PatchLattice &coarse);
 /// Triangles that both touch their domains' boundaries are not counted
 /// when touching(a, b): patches that meet along a curve or at a corner
 /// sample it apart, and their boundary chords can cross where the
-/// patches only meet. Null lattices are skipped.
+/// patches only meet. Null lattices are skipped; with `within`, so are
+/// triangles whose boxes miss it.
 void forEachLatticeCrossing(std::span<const PatchLattice *const> lattices,
                             const std::function<bool(int a, int b)> &touching,
-                            const std::function<void(int a, int b, const Vec3 &point)> &visit);
+                            const std::function<void(int a, int b, const Vec3 &point)> &visit,
+                            const BoundingBox *within = nullptr);
 
 } // namespace v1
 } // namespace curvenet

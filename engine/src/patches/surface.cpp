@@ -800,10 +800,13 @@ void separateCrossingFaces(const Impl &impl, std::span<const int> faces, std::ve
       if (g != f && lattices[static_cast<std::size_t>(g)] &&
           lattice.mayMeet(*lattices[static_cast<std::size_t>(g)]))
         near.push_back(lattices[static_cast<std::size_t>(g)]), faceOf.push_back(g);
+    // Only the neighbours' triangles that may meet this lattice's box: a
+    // large network's faces would otherwise make every variant's search
+    // as large as the whole surface's.
     bool crosses = false;
     forEachLatticeCrossing(
         near, [&](int a, int b) { return touching(faceOf[static_cast<std::size_t>(a)], faceOf[static_cast<std::size_t>(b)]); },
-        [&](int a, int, const Vec3 &) { crosses = crosses || a == 0; });
+        [&](int a, int, const Vec3 &) { crosses = crosses || a == 0; }, &lattice.box);
     return !crosses;
   };
   for (const auto &[a, b] : pairs) {
