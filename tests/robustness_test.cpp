@@ -577,7 +577,8 @@ TEST(SelfIntersection, FacesPassingThroughEachOtherAreFoundAgainOnAFinerMesh) {
   }
 }
 
-// forEachLatticeCrossing: a face's lattice crosses its copy turned a quarter
+// forEachLatticeCrossing: a face's lattice (halved: the same as one at half
+// the rows) crosses its copy turned a quarter
 // turn about a line through its middle, and not its copy moved away; the
 // sphere-dodecahedron's faces, which meet along curves and at corners, do
 // not cross one another once triangles that both touch their boundaries
@@ -585,6 +586,14 @@ TEST(SelfIntersection, FacesPassingThroughEachOtherAreFoundAgainOnAFinerMesh) {
 TEST(SelfIntersection, LatticesCrossWhereTheirPatchesDo) {
   const Surface sphere = Surface::build(Network::build(builtinNetwork("sphere-dodecahedron")), {Scheme::GregoryG2});
   const PatchLattice face = patchLattice(*SurfaceAccess::patch(sphere, 0), 24);
+  // Every other point of the 24-row lattice is the 12-row one (the build
+  // searches all faces at 12 rows from the lattices it made at 24).
+  const PatchLattice half = halved(face), twelve = patchLattice(*SurfaceAccess::patch(sphere, 0), 12);
+  ASSERT_EQ(half.positions.size(), twelve.positions.size());
+  for (std::size_t p = 0; p < half.positions.size(); ++p) // the batch evaluates them in other lanes
+    EXPECT_LE(norm(half.positions[p] - twelve.positions[p]), 1e-12 * face.box.diagonal()) << p;
+  EXPECT_EQ(half.triangles, twelve.triangles);
+  EXPECT_EQ(half.onBoundary, twelve.onBoundary);
   const Vec3 middle = face.box.center();
   PatchLattice turned = face, moved = face;
   for (Vec3 &p : turned.positions) {

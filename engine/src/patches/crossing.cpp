@@ -22,20 +22,41 @@ struct FanLattice {
   std::vector<DualVec3> points; ///< with their derivatives
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::vector<char> boundary; ///< per point: on the domain's boundary (i + j = rows)
+  int sides = 0, rows = 0;
 };
+
+/// The index of lattice point (k, i, j) of an n-sided domain's fan lattice.
+std::uint32_t latticeId(int n, int rows, int k, int i, int j) {
+  if (i == 0 && j == 0) return 0;
+  if (i == 0) k = (k + 1) % n, i = j, j = 0;
+  // Rows i = 1 … rows hold rows − i + 1 points each.
+  const int before = (i - 1) * (rows + 1) - (i - 1) * i / 2;
+  return static_cast<std::uint32_t>(1 + k * (rows * (rows + 1) / 2) + before + j);
+}
+
+std::size_t latticeSize(int n, int rows) { return static_cast<std::size_t>(1 + n * (rows * (rows + 1) / 2)); }
+
+/// The fan lattice's triangles, and per point whether it lies on the
+/// domain's boundary (i + j = rows).
+void fanTriangles(int n, int rows, std::vector<std::array<std::uint32_t, 3>> &triangles, std::vector<char> &boundary) {
+  auto id = [&](int k, int i, int j) { return latticeId(n, rows, k, i, j); };
+  boundary.assign(latticeSize(n, rows), 0);
+  for (int k = 0; k < n; ++k)
+    for (int i = 1; i <= rows; ++i) boundary[id(k, i, rows - i)] = 1;
+  triangles.clear();
+  for (int k = 0; k < n; ++k)
+    for (int i = 0; i < rows; ++i)
+      for (int j = 0; i + j < rows; ++j) {
+        triangles.push_back({id(k, i, j), id(k, i + 1, j), id(k, i, j + 1)});
+        if (i + j + 1 < rows) triangles.push_back({id(k, i + 1, j), id(k, i + 1, j + 1), id(k, i, j + 1)});
+      }
+}
 
 FanLattice fanLattice(const Patch &patch, int rows) {
   const RegularDomain &domain = patch.domain();
   const int n = domain.sides();
-  const int perTriangle = rows * (rows + 1) / 2; // i ≥ 1, i + j ≤ rows
-  auto id = [&](int k, int i, int j) -> std::uint32_t {
-    if (i == 0 && j == 0) return 0;
-    if (i == 0) k = (k + 1) % n, i = j, j = 0;
-    // Rows i = 1 … rows hold rows − i + 1 points each.
-    const int before = (i - 1) * (rows + 1) - (i - 1) * i / 2;
-    return static_cast<std::uint32_t>(1 + k * perTriangle + before + j);
-  };
-  std::vector<double> us(static_cast<std::size_t>(1 + n * perTriangle)), vs(us.size());
+  auto id = [&](int k, int i, int j) { return latticeId(n, rows, k, i, j); };
+  std::vector<double> us(latticeSize(n, rows)), vs(us.size());
   for (int k = 0; k < n; ++k)
     for (int i = 1; i <= rows; ++i)
       for (int j = 0; i + j <= rows; ++j) {
@@ -43,17 +64,10 @@ FanLattice fanLattice(const Patch &patch, int rows) {
         us[id(k, i, j)] = uv.x, vs[id(k, i, j)] = uv.y;
       }
   FanLattice lattice;
-  lattice.boundary.assign(us.size(), 0);
-  for (int k = 0; k < n; ++k)
-    for (int i = 1; i <= rows; ++i) lattice.boundary[id(k, i, rows - i)] = 1;
+  lattice.sides = n, lattice.rows = rows;
+  fanTriangles(n, rows, lattice.triangles, lattice.boundary);
   lattice.points.resize(us.size());
   patch.evaluateBatch(us.size(), us.data(), vs.data(), lattice.points.data());
-  for (int k = 0; k < n; ++k)
-    for (int i = 0; i < rows; ++i)
-      for (int j = 0; i + j < rows; ++j) {
-        lattice.triangles.push_back({id(k, i, j), id(k, i + 1, j), id(k, i, j + 1)});
-        if (i + j + 1 < rows) lattice.triangles.push_back({id(k, i + 1, j), id(k, i + 1, j + 1), id(k, i, j + 1)});
-      }
   return lattice;
 }
 
@@ -99,18 +113,25 @@ bool boxesMeet(const BoundingBox &box, const Vec3 &a, const Vec3 &b, const Vec3 
   return true;
 }
 
+/// Which triangles touch the boundary, and the box of the positions.
+void finish(PatchLattice &lattice, const std::vector<char> &boundary) {
+  lattice.onBoundary.resize(lattice.triangles.size());
+  for (std::size_t t = 0; t < lattice.triangles.size(); ++t)
+    lattice.onBoundary[t] = std::any_of(lattice.triangles[t].begin(), lattice.triangles[t].end(),
+                                        [&](std::uint32_t v) { return boundary[v] != 0; });
+  lattice.box = {};
+  for (const Vec3 &p : lattice.positions) lattice.box.add(p);
+}
+
 PatchLattice asTriangles(const FanLattice &fan) {
   PatchLattice lattice;
+  lattice.sides = fan.sides, lattice.rows = fan.rows;
   lattice.positions.resize(fan.points.size());
   lattice.normals.resize(fan.points.size());
   for (std::size_t p = 0; p < fan.points.size(); ++p)
     lattice.positions[p] = fan.points[p].v, lattice.normals[p] = normalized(cross(fan.points[p].du, fan.points[p].dv));
   lattice.triangles = fan.triangles;
-  lattice.onBoundary.resize(fan.triangles.size());
-  for (std::size_t t = 0; t < fan.triangles.size(); ++t)
-    lattice.onBoundary[t] = std::any_of(fan.triangles[t].begin(), fan.triangles[t].end(),
-                                        [&](std::uint32_t v) { return fan.boundary[v] != 0; });
-  for (const Vec3 &p : lattice.positions) lattice.box.add(p);
+  finish(lattice, fan.boundary);
   return lattice;
 }
 } // namespace
@@ -128,6 +149,23 @@ std::optional<Vec3> patchSelfCrossing(const Patch &patch) {
 }
 
 PatchLattice patchLattice(const Patch &patch, int rows) { return asTriangles(fanLattice(patch, rows)); }
+
+PatchLattice halved(const PatchLattice &fine) {
+  const int n = fine.sides, rows = fine.rows / 2;
+  PatchLattice lattice;
+  lattice.sides = n, lattice.rows = rows;
+  lattice.positions.resize(latticeSize(n, rows)), lattice.normals.resize(lattice.positions.size());
+  for (int k = 0; k < n; ++k)
+    for (int i = 0; i <= rows; ++i)
+      for (int j = 0; i + j <= rows; ++j) {
+        const std::uint32_t to = latticeId(n, rows, k, i, j), from = latticeId(n, fine.rows, k, 2 * i, 2 * j);
+        lattice.positions[to] = fine.positions[from], lattice.normals[to] = fine.normals[from];
+      }
+  std::vector<char> boundary;
+  fanTriangles(n, rows, lattice.triangles, boundary);
+  finish(lattice, boundary);
+  return lattice;
+}
 
 void forEachLatticeCrossing(std::span<const PatchLattice *const> lattices,
                             const std::function<bool(int a, int b)> &touching,

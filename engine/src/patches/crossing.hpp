@@ -39,6 +39,7 @@ struct PatchLattice {
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::vector<char> onBoundary; ///< per triangle
   BoundingBox box; ///< of the positions
+  int sides = 0, rows = 0;
   /// Whether the boxes of this and `other` overlap (touching counts).
   bool mayMeet(const PatchLattice &other) const {
     return box.min.x <= other.box.max.x && other.box.min.x <= box.max.x && box.min.y <= other.box.max.y &&
@@ -46,6 +47,8 @@ struct PatchLattice {
   }
 };
 PatchLattice patchLattice(const Patch &patch, int rows);
+/// The lattice at half the rows of `fine` (an even count), from its points.
+PatchLattice halved(const PatchLattice &fine);
 
 /// patchSelfCrossing, also giving the 24-row lattice it searched, for the
 /// search between patches (forEachLatticeCrossing).

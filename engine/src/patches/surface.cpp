@@ -757,8 +757,10 @@ private:
 /// gregory-g2 the ear stalks' faces 11 and 35, whose patches with the
 /// two-ribbon blend at every corner curl through faces 10 and 34, take
 /// eq. 17's corners. Faces kept from the G¹ surface and composite-ribbon
-/// patches have no variants.
-void separateCrossingFaces(const Impl &impl, std::span<const int> faces, std::vector<FaceBuild> &built) {
+/// patches have no variants. `searched` holds every face's 12-row lattice:
+/// the faces not built here keep theirs, the built ones' are made here.
+void separateCrossingFaces(const Impl &impl, std::span<const int> faces, std::vector<FaceBuild> &built,
+                           std::vector<std::shared_ptr<const PatchLattice>> &searched) {
   if (impl.options.scheme != Scheme::GregoryG1 && impl.options.scheme != Scheme::GregoryG2) return;
   const int count = static_cast<int>(impl.network.faces().size());
   std::vector<int> builtIndex(static_cast<std::size_t>(count), -1);
@@ -767,39 +769,66 @@ void separateCrossingFaces(const Impl &impl, std::span<const int> faces, std::ve
     const int k = builtIndex[static_cast<std::size_t>(f)];
     return k >= 0 ? built[static_cast<std::size_t>(k)].patch.get() : impl.patches[static_cast<std::size_t>(f)].get();
   };
-  // Each face's lattice at 24 rows (the build's, else made here) and at 12,
-  // for the search over all faces: the same search at 24 rows took about
-  // as long as the rest of doghead.obj's G¹ build.
-  std::vector<PatchLattice> own(static_cast<std::size_t>(count)), coarse(static_cast<std::size_t>(count));
-  std::vector<const PatchLattice *> lattices(static_cast<std::size_t>(count), nullptr),
-      coarseLattices(static_cast<std::size_t>(count), nullptr);
+  // Every face's lattice at 12 rows for the search over all faces (the same
+  // search at 24 rows took about as long as the rest of doghead.obj's G¹
+  // build): the built faces' every other point of the build's 24-row one,
+  // the others' kept from their build.
+  searched.resize(static_cast<std::size_t>(count));
+  auto coarseOf = [&](int f, const Patch &patch) {
+    const int k = builtIndex[static_cast<std::size_t>(f)];
+    const PatchLattice *ofBuild = k >= 0 ? &built[static_cast<std::size_t>(k)].lattice : nullptr;
+    return std::make_shared<const PatchLattice>(ofBuild && ofBuild->rows == 24 ? halved(*ofBuild) : patchLattice(patch, 12));
+  };
   forEachItem(static_cast<std::size_t>(count), [&](std::size_t f) {
     const Patch *patch = patchOf(static_cast<int>(f));
-    if (!patch) return;
-    const int k = builtIndex[f];
-    if (k >= 0 && !built[static_cast<std::size_t>(k)].lattice.triangles.empty()) {
-      lattices[f] = &built[static_cast<std::size_t>(k)].lattice;
-    } else {
-      own[f] = patchLattice(*patch, 24);
-      lattices[f] = &own[f];
-    }
-    coarse[f] = patchLattice(*patch, 12);
-    coarseLattices[f] = &coarse[f];
+    if (!patch) searched[f] = nullptr;
+    else if (builtIndex[f] >= 0 || !searched[f]) searched[f] = coarseOf(static_cast<int>(f), *patch);
   });
+  std::vector<const PatchLattice *> coarseLattices(static_cast<std::size_t>(count));
+  for (std::size_t f = 0; f < searched.size(); ++f) coarseLattices[f] = searched[f].get();
+  // Each face's lattice at 24 rows, for the variant search: the build's, or
+  // made when first needed (a partial rebuild makes none for faces far
+  // from a crossing).
+  std::vector<PatchLattice> own(static_cast<std::size_t>(count));
+  std::vector<const PatchLattice *> lattices(static_cast<std::size_t>(count), nullptr);
+  for (std::size_t k = 0; k < faces.size(); ++k)
+    if (!built[k].lattice.triangles.empty()) lattices[static_cast<std::size_t>(faces[k])] = &built[k].lattice;
+  auto latticeOf = [&](int f) -> const PatchLattice & {
+    const auto F = static_cast<std::size_t>(f);
+    if (!lattices[F]) own[F] = patchLattice(*patchOf(f), 24), lattices[F] = &own[F];
+    return *lattices[F];
+  };
   const SharedVertices touching(impl.network);
   std::vector<std::pair<int, int>> pairs;
-  forEachLatticeCrossing(coarseLattices, std::cref(touching), [&](int a, int b, const Vec3 &) {
-    if (builtIndex[static_cast<std::size_t>(a)] >= 0 || builtIndex[static_cast<std::size_t>(b)] >= 0)
-      pairs.push_back({a, b});
-  });
+  // Pair by pair of faces whose boxes meet, one of them built here, over
+  // the triangles within both boxes (where any crossing lies): one search
+  // over every face's triangles spent most of its time on neighbouring
+  // triangles of one face.
+  for (int a = 0; a < count; ++a)
+    for (int b = a + 1; b < count; ++b) {
+      const PatchLattice *A = coarseLattices[static_cast<std::size_t>(a)], *B = coarseLattices[static_cast<std::size_t>(b)];
+      if (!A || !B || !A->mayMeet(*B) ||
+          (builtIndex[static_cast<std::size_t>(a)] < 0 && builtIndex[static_cast<std::size_t>(b)] < 0))
+        continue;
+      BoundingBox both;
+      both.min = {std::max(A->box.min.x, B->box.min.x), std::max(A->box.min.y, B->box.min.y),
+                  std::max(A->box.min.z, B->box.min.z)};
+      both.max = {std::min(A->box.max.x, B->box.max.x), std::min(A->box.max.y, B->box.max.y),
+                  std::min(A->box.max.z, B->box.max.z)};
+      const PatchLattice *two[2] = {A, B};
+      bool crossing = false;
+      forEachLatticeCrossing(two, [&](int, int) { return touching(a, b); }, [&](int, int, const Vec3 &) { crossing = true; },
+                             &both);
+      if (crossing) pairs.push_back({a, b});
+    }
   // Whether a lattice of face f crosses no other face's (at 24 rows).
   auto crossesNone = [&](int f, const PatchLattice &lattice) {
     std::vector<const PatchLattice *> near{&lattice};
     std::vector<int> faceOf{f};
     for (int g = 0; g < count; ++g)
-      if (g != f && lattices[static_cast<std::size_t>(g)] &&
-          lattice.mayMeet(*lattices[static_cast<std::size_t>(g)]))
-        near.push_back(lattices[static_cast<std::size_t>(g)]), faceOf.push_back(g);
+      if (g != f && coarseLattices[static_cast<std::size_t>(g)] &&
+          lattice.mayMeet(*coarseLattices[static_cast<std::size_t>(g)]))
+        near.push_back(&latticeOf(g)), faceOf.push_back(g);
     // Only the neighbours' triangles that may meet this lattice's box: a
     // large network's faces would otherwise make every variant's search
     // as large as the whole surface's.
@@ -821,7 +850,7 @@ void separateCrossingFaces(const Impl &impl, std::span<const int> faces, std::ve
     for (const int f : {a, b})
       if (builtIndex[static_cast<std::size_t>(f)] >= 0 && !keptG1(impl, f)) candidates.push_back(f);
     std::sort(candidates.begin(), candidates.end(), [&](int x, int y) {
-      return leastAlignment(*lattices[static_cast<std::size_t>(x)]) < leastAlignment(*lattices[static_cast<std::size_t>(y)]);
+      return leastAlignment(latticeOf(x)) < leastAlignment(latticeOf(y));
     });
     // A variant of face f crossing no other face, or nullopt.
     auto variantOf = [&](int f) -> std::optional<FaceBuild> {
@@ -836,6 +865,8 @@ void separateCrossingFaces(const Impl &impl, std::span<const int> faces, std::ve
       FaceBuild &slot = built[static_cast<std::size_t>(builtIndex[static_cast<std::size_t>(f)])];
       slot = std::move(rebuilt);
       lattices[static_cast<std::size_t>(f)] = &slot.lattice;
+      searched[static_cast<std::size_t>(f)] = coarseOf(f, *slot.patch);
+      coarseLattices[static_cast<std::size_t>(f)] = searched[static_cast<std::size_t>(f)].get();
     };
     for (const int f : candidates)
       if (std::optional<FaceBuild> rebuilt = variantOf(f)) {
@@ -853,7 +884,9 @@ void buildFaces(Impl &impl, std::span<const int> faces) {
   impl.domainSides.resize(count);
   std::vector<FaceBuild> built(faces.size());
   forEachItem(faces.size(), [&](std::size_t k) { built[k] = buildFace(impl, faces[k]); });
-  separateCrossingFaces(impl, faces, built);
+  std::vector<std::shared_ptr<const PatchLattice>> searched = impl.crossingLattices;
+  separateCrossingFaces(impl, faces, built, searched);
+  impl.crossingLattices = std::move(searched);
   std::vector<char> folded(count, 0);
   for (int f : impl.folded) folded[f] = 1;
   impl.selfCrossings.resize(count);

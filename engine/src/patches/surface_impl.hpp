@@ -16,6 +16,8 @@
 namespace curvenet {
 inline namespace v1 {
 
+struct PatchLattice;
+
 struct Surface::Impl {
   /// Where the patches' own coordinates have their origin in the world
   /// (zero unless the network lies far from the origin, see Surface::origin).
@@ -24,6 +26,10 @@ struct Surface::Impl {
   /// Per face, where its patch passes through itself (patchSelfCrossing,
   /// in the patches' own coordinates); empty for the Bézier schemes.
   std::vector<std::optional<Vec3>> selfCrossings;
+  /// Per face, its patch's 12-row fan lattice, where faces passing through
+  /// each other are looked for (separateCrossingFaces); kept, so that a
+  /// partial rebuild makes only its own faces' again. Gregory schemes only.
+  std::vector<std::shared_ptr<const PatchLattice>> crossingLattices;
   Network network;
   SurfaceOptions options;
   bool referenceFences = false; ///< fence normals from the network's reference surface
