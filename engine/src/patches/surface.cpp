@@ -838,7 +838,8 @@ void separateCrossingFaces(const Impl &impl, std::span<const int> faces, std::ve
         [&](int a, int, const Vec3 &) { crosses = crosses || a == 0; }, &lattice.box);
     return !crosses;
   };
-  for (const auto &[a, b] : pairs) {
+  for (const auto &pair : pairs) {
+    const int a = pair.first, b = pair.second; // named, not bound: clang 14 captures no structured bindings
     // Found again at 48 rows (a coarse lattice's chords can cross where the
     // patches do not), and not yet taken apart by an earlier pair's variant.
     const PatchLattice fineA = patchLattice(*patchOf(a), 48), fineB = patchLattice(*patchOf(b), 48);
