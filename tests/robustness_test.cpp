@@ -467,7 +467,9 @@ TEST(RobustnessCorpus, CornersThatWouldFoldTakeTheTwoRibbonBlend) {
 }
 
 // The overlap traversal of TriangleBvh gives exactly the brute-force pairs of
-// triangles whose boxes overlap, on random triangles of mixed sizes.
+// triangles whose boxes overlap, on random triangles of mixed sizes; so do
+// BoundingBox::meets, and BoundingBox::intersection is non-empty exactly
+// for those pairs, with the larger minimum and smaller maximum per axis.
 TEST(SelfIntersection, OverlappingPairsAreTheBruteForcePairs) {
   std::mt19937 random(7);
   std::uniform_real_distribution<double> unit(0, 1);
@@ -492,6 +494,15 @@ TEST(SelfIntersection, OverlappingPairsAreTheBruteForcePairs) {
       bool overlap = true;
       for (int i = 0; i < 3; ++i) overlap = overlap && A.min[i] <= B.max[i] && B.min[i] <= A.max[i];
       if (overlap) expected.insert({a, b});
+      EXPECT_EQ(A.meets(B), overlap) << a << " " << b;
+      const BoundingBox both = A.intersection(B);
+      bool nonEmpty = true;
+      for (int i = 0; i < 3; ++i) {
+        EXPECT_EQ(both.min[i], std::max(A.min[i], B.min[i]));
+        EXPECT_EQ(both.max[i], std::min(A.max[i], B.max[i]));
+        nonEmpty = nonEmpty && both.min[i] <= both.max[i];
+      }
+      EXPECT_EQ(nonEmpty, overlap) << a << " " << b;
     }
   TriangleBvh(positions, triangles).forEachOverlappingPair([&](int a, int b) {
     EXPECT_LT(a, b);

@@ -73,6 +73,19 @@ struct BoundingBox {
     max = {std::fmax(max.x, p.x), std::fmax(max.y, p.y), std::fmax(max.z, p.z)};
   }
   bool empty() const { return !(min.x <= max.x); }
+  /// Whether this box and `other` share a point (touching counts; an empty
+  /// box meets none).
+  bool meets(const BoundingBox &other) const {
+    return min.x <= other.max.x && other.min.x <= max.x && min.y <= other.max.y && other.min.y <= max.y &&
+           min.z <= other.max.z && other.min.z <= max.z;
+  }
+  /// The points of both boxes (empty where they do not meet).
+  BoundingBox intersection(const BoundingBox &other) const {
+    BoundingBox both;
+    both.min = {std::fmax(min.x, other.min.x), std::fmax(min.y, other.min.y), std::fmax(min.z, other.min.z)};
+    both.max = {std::fmin(max.x, other.max.x), std::fmin(max.y, other.max.y), std::fmin(max.z, other.max.z)};
+    return both;
+  }
   /// Length of the diagonal: the model scale every relative figure refers to.
   double diagonal() const { return empty() ? 0.0 : norm(max - min); }
   Vec3 center() const { return (min + max) * 0.5; }

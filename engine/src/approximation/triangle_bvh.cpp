@@ -10,13 +10,10 @@ inline namespace v1 {
 namespace {
 constexpr int kLeafSize = 4;
 
-Vec3 minimum(const Vec3 &a, const Vec3 &b) { return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)}; }
-Vec3 maximum(const Vec3 &a, const Vec3 &b) { return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)}; }
-
-double boxSquaredDistance(const Vec3 &p, const Vec3 &lo, const Vec3 &hi) {
+double boxSquaredDistance(const Vec3 &p, const BoundingBox &box) {
   double s = 0;
   for (int i = 0; i < 3; ++i) {
-    const double d = std::max({lo[i] - p[i], 0.0, p[i] - hi[i]});
+    const double d = std::max({box.min[i] - p[i], 0.0, p[i] - box.max[i]});
     s += d * d;
   }
   return s;
@@ -73,18 +70,17 @@ TriangleBvh::TriangleBvh(std::span<const Vec3> positions, std::span<const std::a
 }
 
 void TriangleBvh::build(int index, int begin, int end, std::vector<Vec3> &centroids) {
-  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi = -lo, clo = lo, chi = hi;
+  BoundingBox box, ofCentroids;
   for (int k = begin; k < end; ++k) {
-    const auto &tri = triangles_[order_[k]];
-    for (int i = 0; i < 3; ++i) lo = minimum(lo, positions_[tri[i]]), hi = maximum(hi, positions_[tri[i]]);
-    clo = minimum(clo, centroids[order_[k]]), chi = maximum(chi, centroids[order_[k]]);
+    for (const std::uint32_t v : triangles_[order_[k]]) box.add(positions_[v]);
+    ofCentroids.add(centroids[order_[k]]);
   }
-  nodes_[index].lo = lo, nodes_[index].hi = hi;
+  nodes_[index].box = box;
   if (end - begin <= kLeafSize) {
     nodes_[index].first = begin, nodes_[index].count = end - begin;
     return;
   }
-  const Vec3 extent = chi - clo;
+  const Vec3 extent = ofCentroids.max - ofCentroids.min;
   const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
   const int mid = (begin + end) / 2;
   std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
@@ -110,7 +106,7 @@ TriangleBvh::Hit TriangleBvh::closest(const Vec3 &p) const {
     // Until a triangle is found nothing is pruned: a point so far out that
     // its squared distances overflow to infinity (or NaN) still gets a
     // triangle, with that distance, instead of none.
-    if (best.triangle >= 0 && boxSquaredDistance(p, node.lo, node.hi) >= best.squaredDistance) continue;
+    if (best.triangle >= 0 && boxSquaredDistance(p, node.box) >= best.squaredDistance) continue;
     if (node.count > 0) {
       for (int k = node.first; k < node.first + node.count; ++k) {
         const auto &tri = triangles_[order_[k]];
@@ -123,34 +119,32 @@ TriangleBvh::Hit TriangleBvh::closest(const Vec3 &p) const {
     }
     // Nearer child last, so it is popped first.
     const int a = node.first, b = node.first + 1;
-    const double da = boxSquaredDistance(p, nodes_[a].lo, nodes_[a].hi);
-    const double db = boxSquaredDistance(p, nodes_[b].lo, nodes_[b].hi);
+    const double da = boxSquaredDistance(p, nodes_[a].box);
+    const double db = boxSquaredDistance(p, nodes_[b].box);
     if (da < db) stack[top++] = b, stack[top++] = a;
     else stack[top++] = a, stack[top++] = b;
   }
   return best;
 }
 
-bool TriangleBvh::overlap(const Vec3 &loA, const Vec3 &hiA, const Vec3 &loB, const Vec3 &hiB) {
-  return loA.x <= hiB.x && loB.x <= hiA.x && loA.y <= hiB.y && loB.y <= hiA.y && loA.z <= hiB.z && loB.z <= hiA.z;
-}
-
-void TriangleBvh::triangleBox(int t, Vec3 &lo, Vec3 &hi) const {
+BoundingBox TriangleBvh::triangleBox(int t) const {
   const auto &tri = triangles_[static_cast<std::size_t>(t)];
-  lo = minimum(minimum(positions_[tri[0]], positions_[tri[1]]), positions_[tri[2]]);
-  hi = maximum(maximum(positions_[tri[0]], positions_[tri[1]]), positions_[tri[2]]);
+  BoundingBox box;
+  for (const std::uint32_t v : tri) box.add(positions_[v]);
+  return box;
 }
 
 void TriangleBvh::forEachOverlappingPair(const std::function<void(int a, int b)> &visit) const {
   if (nodes_.empty()) return;
-  std::vector<Vec3> lo(triangles_.size()), hi(triangles_.size());
-  for (std::size_t t = 0; t < triangles_.size(); ++t) triangleBox(static_cast<int>(t), lo[t], hi[t]);
+  std::vector<BoundingBox> boxes(triangles_.size());
+  for (std::size_t t = 0; t < triangles_.size(); ++t) boxes[t] = triangleBox(static_cast<int>(t));
   auto visitIfBoxesOverlap = [&](int a, int b) {
-    if (overlap(lo[static_cast<std::size_t>(a)], hi[static_cast<std::size_t>(a)], lo[static_cast<std::size_t>(b)],
-                hi[static_cast<std::size_t>(b)]))
-      visit(std::min(a, b), std::max(a, b));
+    if (boxes[static_cast<std::size_t>(a)].meets(boxes[static_cast<std::size_t>(b)])) visit(std::min(a, b), std::max(a, b));
   };
-  auto volume = [](const Node &n) { return (n.hi.x - n.lo.x) * (n.hi.y - n.lo.y) * (n.hi.z - n.lo.z); };
+  auto volume = [](const Node &n) {
+    const Vec3 extent = n.box.max - n.box.min;
+    return extent.x * extent.y * extent.z;
+  };
   // Pairs of nodes whose triangles may overlap; (k, k) stands for the pairs
   // within node k.
   std::vector<std::pair<int, int>> stack{{0, 0}};
@@ -168,7 +162,7 @@ void TriangleBvh::forEachOverlappingPair(const std::function<void(int a, int b)>
       }
       continue;
     }
-    if (!overlap(na.lo, na.hi, nb.lo, nb.hi)) continue;
+    if (!na.box.meets(nb.box)) continue;
     if (na.count > 0 && nb.count > 0) {
       for (int i = na.first; i < na.first + na.count; ++i)
         for (int j = nb.first; j < nb.first + nb.count; ++j) visitIfBoxesOverlap(order_[i], order_[j]);

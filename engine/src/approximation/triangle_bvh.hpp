@@ -36,10 +36,9 @@ public:
   void forEachOverlappingPair(const std::function<void(int a, int b)> &visit) const;
 
 private:
-  static bool overlap(const Vec3 &loA, const Vec3 &hiA, const Vec3 &loB, const Vec3 &hiB);
-  void triangleBox(int t, Vec3 &lo, Vec3 &hi) const;
+  BoundingBox triangleBox(int t) const;
   struct Node {
-    Vec3 lo, hi;
+    BoundingBox box;
     int first = 0, count = 0; ///< leaf: range of order_; inner: count = 0, children first, first + 1
   };
   void build(int index, int begin, int end, std::vector<Vec3> &centroids);

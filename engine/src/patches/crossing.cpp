@@ -106,11 +106,11 @@ std::optional<Vec3> latticeCrossing(const FanLattice &lattice) {
   return crossing;
 }
 
-/// Whether a box meets the box of the triangle (a, b, c).
-bool boxesMeet(const BoundingBox &box, const Vec3 &a, const Vec3 &b, const Vec3 &c) {
-  for (int i = 0; i < 3; ++i)
-    if (std::max({a[i], b[i], c[i]}) < box.min[i] || std::min({a[i], b[i], c[i]}) > box.max[i]) return false;
-  return true;
+/// The box of the triangle (a, b, c).
+BoundingBox triangleBox(const Vec3 &a, const Vec3 &b, const Vec3 &c) {
+  BoundingBox box;
+  box.add(a), box.add(b), box.add(c);
+  return box;
 }
 
 /// Which triangles touch the boundary, and the box of the positions.
@@ -184,7 +184,7 @@ void forEachLatticeCrossing(std::span<const PatchLattice *const> lattices,
     positions.insert(positions.end(), lattice.positions.begin(), lattice.positions.end());
     for (std::size_t t = 0; t < lattice.triangles.size(); ++t) {
       const auto &tri = lattice.triangles[t];
-      if (within && !boxesMeet(*within, lattice.positions[tri[0]], lattice.positions[tri[1]], lattice.positions[tri[2]]))
+      if (within && !within->meets(triangleBox(lattice.positions[tri[0]], lattice.positions[tri[1]], lattice.positions[tri[2]])))
         continue;
       triangles.push_back({first + tri[0], first + tri[1], first + tri[2]});
       latticeOf.push_back(static_cast<int>(l));

@@ -40,11 +40,6 @@ struct PatchLattice {
   std::vector<char> onBoundary; ///< per triangle
   BoundingBox box; ///< of the positions
   int sides = 0, rows = 0;
-  /// Whether the boxes of this and `other` overlap (touching counts).
-  bool mayMeet(const PatchLattice &other) const {
-    return box.min.x <= other.box.max.x && other.box.min.x <= box.max.x && box.min.y <= other.box.max.y &&
-           other.box.min.y <= box.max.y && box.min.z <= other.box.max.z && other.box.min.z <= box.max.z;
-  }
 };
 PatchLattice patchLattice(const Patch &patch, int rows);
 /// The lattice at half the rows of `fine` (an even count), from its points.

@@ -472,6 +472,18 @@ struct FaceBuild {
   bool folded = false;
   std::optional<Vec3> selfCrossing; ///< patchSelfCrossing of `patch`
   PatchLattice lattice;             ///< its 24-row lattice (patchSelfCrossing), when built here
+  bool clearOfOthers = true;        ///< whether `patch` passed buildFace's clearOfOthers, when given
+};
+
+/// Whether a face's patch, given its 24-row lattice, crosses no other face
+/// (separateCrossingFaces).
+using ClearOfOthers = std::function<bool(const PatchLattice &)>;
+
+/// A variant of a patch (unfoldedVariant) with what its checks found.
+struct PatchVariant {
+  std::shared_ptr<const Patch> patch;
+  PatchLattice lattice; ///< its 24-row lattice
+  std::optional<Vec3> selfCrossing;
 };
 
 /// The fence face f sees along segment e.
@@ -500,14 +512,16 @@ const NormalFence *fenceOf(const Impl &impl, int e, int f) {
 /// 3/4 length they pass both) nor at a corner, and does not pass through
 /// itself (patchSelfCrossing); failing that, when the patch folds on the
 /// fold grid (`foldsInside`), the first variant that passes the fold grid;
-/// else null.
+/// else none. With `clearOfOthers`, only variants whose lattice it passes
+/// (the one lattice made for both that check and patchSelfCrossing's).
 /// Three times the fold grid, below Patch::kTableResolution: no ribbon
 /// tables are built for a variant.
 constexpr int kFineFoldRows = 3 * kFoldRows;
 static_assert(kFineFoldRows < Patch::kTableResolution);
 template <class Build, class Accepts, class Folds>
-std::shared_ptr<const Patch> unfoldedVariant(const Patch &patch, bool foldsInside, std::span<const int> foldingCorners,
-                                             const Build &build, const Accepts &accepts, const Folds &folds) {
+std::optional<PatchVariant> unfoldedVariant(const Patch &patch, bool foldsInside, std::span<const int> foldingCorners,
+                                            const Build &build, const Accepts &accepts, const Folds &folds,
+                                            const ClearOfOthers *clearOfOthers) {
   const std::vector<double> &asked = patch.blendShares();
   const int n = patch.domain().sides();
   std::vector<std::pair<double, std::vector<double>>> variants;
@@ -516,7 +530,7 @@ std::shared_ptr<const Patch> unfoldedVariant(const Patch &patch, bool foldsInsid
   variants.push_back({1.0, std::move(blended)});
   for (const double scale : {1.0, 0.75, 0.5})
     for (const double share : {0.0, 1.0}) variants.push_back({scale, std::vector<double>(n, share)});
-  std::shared_ptr<const Patch> coarse;
+  std::optional<PatchVariant> coarse;
   for (std::size_t v = 0; v < variants.size(); ++v) {
     const auto &[scale, shares] = variants[v];
     // The patch itself, or a variant already tried.
@@ -524,9 +538,13 @@ std::shared_ptr<const Patch> unfoldedVariant(const Patch &patch, bool foldsInsid
     if ((scale == 1.0 && shares == asked) || tried) continue;
     std::shared_ptr<const Patch> candidate = build(scale, shares);
     if (folds(*candidate, kFoldRows) || !accepts(*candidate)) continue;
-    if (!folds(*candidate, kFineFoldRows) && foldedCorners(*candidate).empty() && !patchSelfCrossing(*candidate))
-      return candidate;
-    if (!coarse && foldsInside) coarse = std::move(candidate);
+    const bool unfolded = !folds(*candidate, kFineFoldRows) && foldedCorners(*candidate).empty();
+    if (!unfolded && (coarse || !foldsInside)) continue; // neither taken nor the fallback
+    PatchVariant variant{std::move(candidate), {}, {}};
+    variant.selfCrossing = patchSelfCrossing(*variant.patch, variant.lattice);
+    if (clearOfOthers && !(*clearOfOthers)(variant.lattice)) continue;
+    if (unfolded && !variant.selfCrossing) return variant;
+    if (!coarse && foldsInside) coarse = std::move(variant);
   }
   return coarse;
 }
@@ -535,7 +553,7 @@ std::shared_ptr<const Patch> unfoldedVariant(const Patch &patch, bool foldsInsid
 /// fold or pass through itself (unfoldedVariant). With `clearOfOthers`, a
 /// patch it refuses (one passing through a neighbour, separateCrossingFaces)
 /// takes a variant too, and variants must pass it.
-FaceBuild buildFace(const Impl &impl, int f, const std::function<bool(const Patch &)> *clearOfOthers = nullptr) {
+FaceBuild buildFace(const Impl &impl, int f, const ClearOfOthers *clearOfOthers = nullptr) {
   const Face &face = impl.network.faces()[f];
   const bool g2 = impl.options.scheme == Scheme::GregoryG2;
   FaceBuild result;
@@ -665,9 +683,7 @@ FaceBuild buildFace(const Impl &impl, int f, const std::function<bool(const Patc
   // gregory-g2 wants each side's normal to face its fence (a face turned
   // over along a side meets its neighbour's normals there and passes the
   // fold grid).
-  auto accepts = [&](const Patch &patch) {
-    return (!g2 || facesItsFences(patch)) && (!clearOfOthers || (*clearOfOthers)(patch));
-  };
+  auto accepts = [&](const Patch &patch) { return !g2 || facesItsFences(patch); };
   // A face that folds with the shares its ribbons ask for is built again
   // (unfoldedVariant): first with the two-ribbon blend alone at the corners
   // that fold below the fold grid (foldedCorners; docs/surfaces.md, Corner
@@ -678,14 +694,16 @@ FaceBuild buildFace(const Impl &impl, int f, const std::function<bool(const Patc
   // itself without folding.
   const std::vector<int> foldingCorners = foldedCorners(*result.patch);
   result.selfCrossing = patchSelfCrossing(*result.patch, result.lattice);
-  if (result.folded || !foldingCorners.empty() || result.selfCrossing ||
-      (clearOfOthers && !(*clearOfOthers)(*result.patch))) {
+  result.clearOfOthers = !clearOfOthers || (*clearOfOthers)(result.lattice);
+  if (result.folded || !foldingCorners.empty() || result.selfCrossing || !result.clearOfOthers) {
     auto build = [&](double scale, const std::vector<double> &shares) { return withShares(shares, scale); };
-    if (std::shared_ptr<const Patch> unfolded =
-            unfoldedVariant(*result.patch, result.folded, foldingCorners, build, accepts, folds)) {
-      result.patch = std::move(unfolded);
+    if (std::optional<PatchVariant> variant =
+            unfoldedVariant(*result.patch, result.folded, foldingCorners, build, accepts, folds, clearOfOthers)) {
+      result.patch = std::move(variant->patch);
+      result.lattice = std::move(variant->lattice);
+      result.selfCrossing = variant->selfCrossing;
       result.folded = false;
-      result.selfCrossing = patchSelfCrossing(*result.patch, result.lattice);
+      result.clearOfOthers = true;
     }
   }
   return result;
@@ -807,14 +825,10 @@ void separateCrossingFaces(const Impl &impl, std::span<const int> faces, std::ve
   for (int a = 0; a < count; ++a)
     for (int b = a + 1; b < count; ++b) {
       const PatchLattice *A = coarseLattices[static_cast<std::size_t>(a)], *B = coarseLattices[static_cast<std::size_t>(b)];
-      if (!A || !B || !A->mayMeet(*B) ||
+      if (!A || !B || !A->box.meets(B->box) ||
           (builtIndex[static_cast<std::size_t>(a)] < 0 && builtIndex[static_cast<std::size_t>(b)] < 0))
         continue;
-      BoundingBox both;
-      both.min = {std::max(A->box.min.x, B->box.min.x), std::max(A->box.min.y, B->box.min.y),
-                  std::max(A->box.min.z, B->box.min.z)};
-      both.max = {std::min(A->box.max.x, B->box.max.x), std::min(A->box.max.y, B->box.max.y),
-                  std::min(A->box.max.z, B->box.max.z)};
+      const BoundingBox both = A->box.intersection(B->box);
       const PatchLattice *two[2] = {A, B};
       bool crossing = false;
       forEachLatticeCrossing(two, [&](int, int) { return touching(a, b); }, [&](int, int, const Vec3 &) { crossing = true; },
@@ -827,7 +841,7 @@ void separateCrossingFaces(const Impl &impl, std::span<const int> faces, std::ve
     std::vector<int> faceOf{f};
     for (int g = 0; g < count; ++g)
       if (g != f && coarseLattices[static_cast<std::size_t>(g)] &&
-          lattice.mayMeet(*coarseLattices[static_cast<std::size_t>(g)]))
+          lattice.box.meets(coarseLattices[static_cast<std::size_t>(g)]->box))
         near.push_back(&latticeOf(g)), faceOf.push_back(g);
     // Only the neighbours' triangles that may meet this lattice's box: a
     // large network's faces would otherwise make every variant's search
@@ -855,11 +869,9 @@ void separateCrossingFaces(const Impl &impl, std::span<const int> faces, std::ve
     });
     // A variant of face f crossing no other face, or nullopt.
     auto variantOf = [&](int f) -> std::optional<FaceBuild> {
-      const std::function<bool(const Patch &)> clear = [&](const Patch &patch) {
-        return crossesNone(f, patchLattice(patch, 24));
-      };
+      const ClearOfOthers clear = [&](const PatchLattice &lattice) { return crossesNone(f, lattice); };
       FaceBuild rebuilt = buildFace(impl, f, &clear);
-      if (rebuilt.lattice.triangles.empty() || !crossesNone(f, rebuilt.lattice)) return std::nullopt;
+      if (rebuilt.lattice.triangles.empty() || !rebuilt.clearOfOthers) return std::nullopt;
       return rebuilt;
     };
     auto take = [&](int f, FaceBuild &&rebuilt) {
