@@ -346,10 +346,20 @@ std::shared_ptr<const NormalFence> buildFence(const Impl &impl, int e, int side 
         n0, n1));
   }
   if (impl.options.scheme == Scheme::GregoryG2) {
-    // Rotation rates about the tangent that make N' = −S(P') at both ends.
-    const Vec3 t0 = normalized(seg.curve.derivatives(0.0)[1]), t1 = normalized(seg.curve.derivatives(1.0)[1]);
-    const double rate0 = -dot(impl.curvatures[seg.start].shape(t0), cross(t0, n0));
-    const double rate1 = -dot(impl.curvatures[seg.end].shape(t1), cross(t1, n1));
+    // Rotation rates about the tangent that make N' = −S(P') at both ends,
+    // S the end vertex's shape operator; none at a crease vertex, whose one
+    // tensor is fitted to the curves of both sides of the crease in a plane
+    // that is neither side's. There it said nothing of either side's
+    // surface: on bathtub.obj's rim a wall's fence took 11.5 rad per unit
+    // length from it and turned a quarter turn mid-edge, into the rim's
+    // plane, and the wall's patch curled under the rim through its
+    // neighbour there.
+    auto rate = [&](int vertex, const Vec3 &tangent, const Vec3 &normal) {
+      if (impl.frames[vertex].crease) return 0.0;
+      return -dot(impl.curvatures[vertex].shape(tangent), cross(tangent, normal));
+    };
+    const double rate0 = rate(seg.start, normalized(seg.curve.derivatives(0.0)[1]), n0);
+    const double rate1 = rate(seg.end, normalized(seg.curve.derivatives(1.0)[1]), n1);
     return std::make_shared<const NormalFence>(NormalFence::curvatureCompatible(seg.curve, n0, n1, rate0, rate1));
   }
   return std::make_shared<const NormalFence>(seg.curve, n0, n1);
